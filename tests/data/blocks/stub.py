@@ -1,0 +1,28 @@
+"""Fixture stub for the block tests: two classes and a function, four code blocks."""
+
+import math
+
+
+class Steer:
+    def __init__(self):
+        # START CODE BLOCK [week 3: gains]
+        self.Kp = 0.0
+        # END CODE BLOCK
+        self.E_k = 0.0
+
+    def execute(self, x, y, x_g, y_g, theta, dt):
+        # START CODE BLOCK [week 3: theta_g]
+        theta_g = 0.0
+        # END CODE BLOCK
+        # START CODE BLOCK [week 3: error]
+        e_k = 0.0
+        # END CODE BLOCK
+        self.theta_g = theta_g
+        return self.Kp * e_k
+
+
+def wheel_speed(v, R):
+    # START CODE BLOCK
+    vel = 0.0
+    # END CODE BLOCK
+    return vel
