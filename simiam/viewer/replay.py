@@ -1,0 +1,174 @@
+"""Trace -> a self-contained replay page (Seam 2 in, one HTML file out; no network, no physics imports).
+
+`simiam run` and the grader's report call `write_replay(trace, path)` / `render_replay(trace)`. The page has the
+original Sim.I.am GUI's controls (home, rewind, play/pause, zoom buttons and mouse wheel, pan by dragging,
+click the robot to follow it) plus a time slider, playback speed, keyboard shortcuts and plots linked to the
+time cursor. Its script and style are inlined from `static/`, so the file opens offline and can be mailed.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import jinja2
+
+TRACE_FORMAT = "simiam-trace/1"
+
+# Decimals kept when embedding (columnar, rounded): 0.1 mm in position, 1e-4 rad, 1e-3 rad/s.
+_DIGITS = {"t": 4, "x": 4, "y": 4, "theta": 4, "x_est": 4, "y_est": 4, "theta_est": 4, "theta_g": 4,
+           "vel_r": 3, "vel_l": 3, "v": 4, "w": 3}
+_REQUIRED_STEPS = ("t", "x", "y", "theta")
+
+
+class TraceFormatError(ValueError):
+    """The dict handed to the viewer is not a Seam-2 trace; the message says what is missing."""
+
+
+def _num(v: Any, digits: int) -> float | None:
+    """A JSON-safe rounded number; None, NaN, inf and non-numbers become None (null in the page)."""
+    if v is None or isinstance(v, bool) or not isinstance(v, (int, float)):
+        return None
+    f = float(v)
+    if not math.isfinite(f):
+        return None
+    r = round(f, digits)
+    return 0.0 if r == 0 else r  # no "-0.0" in the page
+
+
+def _column(values: list, digits: int) -> list:
+    return [_num(v, digits) for v in values]
+
+
+def _split(rows: list, n: int, width: int, digits: int) -> list[list]:
+    """[[a0..a4], ...] -> width columns; a missing or short row gives nulls."""
+    out: list[list] = [[] for _ in range(width)]
+    for k in range(n):
+        row = rows[k] if k < len(rows) else None
+        for j in range(width):
+            ok = isinstance(row, (list, tuple)) and len(row) > j
+            out[j].append(_num(row[j], digits) if ok else None)
+    return out
+
+
+def _states(states: list, n: int) -> list[list]:
+    """Run-length encoding of the controller names: [[first_row, name], ...]."""
+    runs: list[list] = []
+    for k in range(min(n, len(states))):
+        name = str(states[k]) if states[k] is not None else ""
+        if not runs or runs[-1][1] != name:
+            runs.append([k, name])
+    return runs
+
+
+def pack_trace(trace: dict) -> dict:
+    """The compact form embedded in the page: rounded numbers, one flat list per column, states run-length."""
+    if not isinstance(trace, dict):
+        raise TraceFormatError(f"a trace must be a JSON object (dict), not {type(trace).__name__}")
+    fmt = trace.get("format")
+    if fmt is not None and fmt != TRACE_FORMAT:
+        raise TraceFormatError(f"trace format is {fmt!r}; this viewer reads {TRACE_FORMAT!r}")
+    steps = trace.get("steps")
+    if not isinstance(steps, dict):
+        raise TraceFormatError("the trace has no 'steps' object (the columnar step table of Seam 2)")
+    missing = [c for c in _REQUIRED_STEPS if not isinstance(steps.get(c), list)]
+    if missing:
+        raise TraceFormatError(f"the trace's steps lack the column(s) {', '.join(missing)}")
+    n = len(steps["t"])
+    if n == 0:
+        raise TraceFormatError("the trace has no rows (steps.t is empty)")
+    for c in ("x", "y", "theta"):
+        if len(steps[c]) != n:
+            raise TraceFormatError(f"steps.{c} has {len(steps[c])} rows but steps.t has {n}")
+    robot = trace.get("robot")
+    if not isinstance(robot, dict) or not robot.get("base_plate"):
+        raise TraceFormatError("the trace has no robot.base_plate polygon to draw")
+
+    cols: dict[str, list] = {}
+    for name, digits in _DIGITS.items():
+        vals = steps.get(name)
+        if isinstance(vals, list) and any(v is not None for v in vals):
+            cols[name] = _column(vals[:n] + [None] * (n - len(vals)), digits)
+    for name in ("x_est", "y_est", "theta_est", "vel_r", "vel_l"):
+        cols.setdefault(name, [None] * n)
+    if isinstance(steps.get("ir_range"), list):
+        for k, c in enumerate(_split(steps["ir_range"], n, 5, 4)):
+            cols[f"ir{k}"] = c
+    if isinstance(steps.get("u_ao"), list) and any(u is not None for u in steps["u_ao"]):
+        cols["ux"], cols["uy"] = _split(steps["u_ao"], n, 2, 4)
+    points = steps.get("ir_points_wf")
+    if isinstance(points, list) and any(p is not None for p in points):
+        xs = _split([p[0] if isinstance(p, (list, tuple)) and p else None for p in points], n, 5, 4)
+        ys = _split([p[1] if isinstance(p, (list, tuple)) and len(p) > 1 else None for p in points], n, 5, 4)
+        for k in range(5):
+            cols[f"px{k}"], cols[f"py{k}"] = xs[k], ys[k]
+
+    def poly(p: list) -> list:
+        return [[_num(v[0], 5), _num(v[1], 5)] for v in p]
+
+    world = trace.get("world") or {}
+    collision = trace.get("collision")
+    if isinstance(collision, dict) and isinstance(collision.get("pose"), list):
+        collision = {"step": collision.get("step"), "t": _num(collision.get("t"), 4) or 0.0,
+                     "pose": [_num(v, 4) for v in collision["pose"][:3]]}
+    else:
+        collision = None
+    mounts = [[_num(m[0], 5), _num(m[1], 5), _num(m[2], 6)] for m in robot.get("ir_mounts") or []]
+    goal = trace.get("goal")
+    return {
+        "week": trace.get("week"), "dt": _num(trace.get("dt"), 6) or 0.033, "seconds": trace.get("seconds"),
+        "world": {"name": str(world.get("name", "")), "obstacles": [poly(p) for p in world.get("obstacles", [])]},
+        "robot": {"base_plate": poly(robot["base_plate"]), "ir_mounts": mounts,
+                  "ir_min_range": robot.get("ir_min_range", 0.04), "ir_max_range": robot.get("ir_max_range", 0.3),
+                  "ir_spread": robot.get("ir_spread", math.radians(6))},
+        "start": trace.get("start"),
+        "goal": [_num(goal[0], 5), _num(goal[1], 5)] if isinstance(goal, (list, tuple)) and len(goal) >= 2 else None,
+        "collision": collision,
+        "states": _states(steps.get("state") or [], n),
+        "steps": cols,
+    }
+
+
+def _script_json(data: dict) -> str:
+    """JSON that is safe inside <script type="application/json">: no '<', '>' or '&' can end the element."""
+    text = json.dumps(data, separators=(",", ":"), allow_nan=False, ensure_ascii=False)
+    return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+
+
+def _asset(name: str) -> str:
+    return resources.files("simiam.viewer").joinpath(name).read_text(encoding="utf-8")
+
+
+def render_replay(trace: dict, title: str | None = None) -> str:
+    """Return the replay page for a Seam-2 trace (a dict) as one self-contained HTML string.
+
+    Raises TraceFormatError with a plain message if `trace` is not a Seam-2 trace.
+    """
+    packed = pack_trace(trace)
+    meta = trace.get("meta") or {}
+    week = trace.get("week")
+    if title is None:
+        title = f"simiam replay: week {week}" if week is not None else "simiam replay"
+        if meta.get("submission"):
+            title += f" ({meta['submission']})"
+    n = len(packed["steps"]["t"])
+    bits = [f"world {packed['world']['name']}" if packed["world"]["name"] else "",
+            f"dt {packed['dt']} s", f"{n} rows"]
+    if meta.get("seed") is not None:
+        bits.append(f"seed {meta['seed']}")
+    env = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined)
+    template = env.from_string(_asset("templates/replay.html"))
+    return template.render(title=title, subtitle=" · ".join(b for b in bits if b),
+                           css=_asset("static/replay.css"), js=_asset("static/replay.js"),
+                           data_json=_script_json(packed))
+
+
+def write_replay(trace: dict, path: str | Path) -> Path:
+    """Write the replay page for `trace` to `path` (parent folders created) and return the path."""
+    out = Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(render_replay(trace), encoding="utf-8")
+    return out
