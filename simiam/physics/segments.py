@@ -1,0 +1,67 @@
+"""Edge-edge crossings as the original computed them (`Surface2D.intersection_with_surface`), and the
+obstacle edge table the fast paths cull with.
+
+For edge a = (x1, y1)-(x2, y2) and edge b = (x3, y3)-(x4, y4):
+    u_a = (x43*y13 - y43*x13) / d,  u_b = (x21*y13 - y21*x13) / d,  d = y43*x21 - x43*y21
+and they cross when both parameters lie in the closed interval [0, 1] (touching counts). Parallel edges
+(d = 0) never cross, as in the original where the division gives Inf/NaN. The point is taken along a.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+# Bounding boxes are widened by this much before culling, so that rounding in the exact formula can never
+# report a crossing the cull has thrown away (coordinates are metres, a few units at most).
+CULL_PAD = 1e-9
+
+Edge = tuple[float, float, float, float]
+
+
+def crossing(a: Edge, b: Edge) -> float | None:
+    """u_a of the crossing of edge a with edge b, or None; the original's formula and closed intervals."""
+    x1, y1, x2, y2 = a
+    x3, y3, x4, y4 = b
+    y13 = y1 - y3
+    x13 = x1 - x3
+    x21 = x2 - x1
+    y21 = y2 - y1
+    x43 = x4 - x3
+    y43 = y4 - y3
+    d = y43 * x21 - x43 * y21
+    if d == 0.0:
+        return None
+    ua = (x43 * y13 - y43 * x13) / d
+    ub = (x21 * y13 - y21 * x13) / d
+    if 0.0 <= ua <= 1.0 and 0.0 <= ub <= 1.0:
+        return ua
+    return None
+
+
+def polygon_edges(points: Sequence[Sequence[float]]) -> list[Edge]:
+    """The closed polygon's edges: vertex k to vertex k+1, the last back to the first."""
+    n = len(points)
+    return [(float(points[k][0]), float(points[k][1]), float(points[(k + 1) % n][0]),
+             float(points[(k + 1) % n][1])) for k in range(n)]
+
+
+class ObstacleEdges:
+    """The obstacles' edges, precomputed for fast culled tests: per polygon a padded bounding box and, per
+    edge, (x3, y3, x43, y43, xmin, xmax, ymin, ymax) with the edge's own padded box."""
+
+    def __init__(self, obstacles: Sequence[np.ndarray]) -> None:
+        self.polygons: list[tuple[float, float, float, float, list[tuple[float, ...]]]] = []
+        self.edges: list[list[Edge]] = []
+        for poly in obstacles:
+            edges = polygon_edges(poly)
+            self.edges.append(edges)
+            table = []
+            for x3, y3, x4, y4 in edges:
+                table.append((x3, y3, x4 - x3, y4 - y3, min(x3, x4) - CULL_PAD, max(x3, x4) + CULL_PAD,
+                              min(y3, y4) - CULL_PAD, max(y3, y4) + CULL_PAD))
+            xs = [p[0] for p in edges]
+            ys = [p[1] for p in edges]
+            self.polygons.append((min(xs) - CULL_PAD, max(xs) + CULL_PAD, min(ys) - CULL_PAD,
+                                  max(ys) + CULL_PAD, table))

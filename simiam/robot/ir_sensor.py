@@ -1,0 +1,57 @@
+"""The QuickBot IR sensor model: the cone polygon and the distance -> voltage -> ADC ("raw") map.
+
+The voltage curve is the original's `polyfit(table_d, table_V, 5)` (weeks 3-7). Week 2 uses the manual's
+divider (raw = V*1000/2) on the same true curve, as the contract says (the original's week-2 polynomial
+contradicts its own table).
+"""
+
+from __future__ import annotations
+
+import math
+
+from simiam.physics.transform import transform_point
+from simiam.robot.rounding import round_half_away
+
+# Highest power first, as MATLAB's polyval takes them.
+Point = tuple[float, float]
+
+VOLTAGE_COEFFS = (-10749.324, 10994.428, -4448.079, 906.570, -98.411, 5.496)
+
+
+
+def ir_voltage(d: float) -> float:
+    """Sensor output voltage at distance d (m), by Horner's rule as MATLAB's polyval evaluates it."""
+    v = 0.0
+    for c in VOLTAGE_COEFFS:
+        v = v * d + c
+    return v
+
+
+def distance_to_raw(d: float, ir_mode: str = "week3") -> int:
+    """`QuickBot.ir_distance_to_raw`: distance (m) -> ADC value, round half away from zero, clamped."""
+    v = ir_voltage(d)
+    if ir_mode == "week3":
+        # the original writes V*1000/3 (left to right)
+        x = v * 1000 / 3
+        lo, hi = 133, 917
+    elif ir_mode == "week2":
+        x = v * 1000 / 2
+        lo, hi = 200, 1375
+    else:
+        raise ValueError(f"unknown ir_mode {ir_mode!r} (expected 'week2' or 'week3')")
+    return min(max(round_half_away(x), lo), hi)
+
+
+def cone_polygon(r: float, spread: float) -> tuple[Point, ...]:
+    """The 6-vertex cone of range r in the sensor frame: apex, then five far points on the circle r."""
+    r1 = r * math.tan(spread / 4)
+    r2 = r * math.tan(spread / 2)
+    a1 = math.sqrt(r * r - r1 * r1)
+    a2 = math.sqrt(r * r - r2 * r2)
+    return ((0.0, 0.0), (a2, r2), (a1, r1), (r, 0.0), (a1, -r1), (a2, -r2))
+
+
+def mounted_cone(mount: tuple[float, float, float], r: float, spread: float) -> tuple[Point, ...]:
+    """The cone of range r in the robot frame: the sensor-frame cone moved by T(mount), as the original
+    stores it (apex first, so the apex is the sensor position)."""
+    return tuple(transform_point(mount, px, py) for px, py in cone_polygon(r, spread))

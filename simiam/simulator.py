@@ -1,0 +1,315 @@
+"""The trusted step loop: one QuickBot in a World, driven by a Brain (docs/design.md, Seam 1).
+
+Step order (weeks 2-4, the original's `Simulator.step`):
+  (a) move the true pose with the wheel speeds applied last step (exact arc), then the encoders with
+      those same limited speeds;
+  (b) `brain.step(readings)` with the new ticks and the IR values computed at the end of the previous step;
+  (c) `limit_speeds` on the command, stored for the next move;
+  (d) physics: collision check; only if there is no collision, recompute the IR ranges.
+One IR update runs at construction, so step 1 sees the start pose. Week 1 runs the brain before the move
+(its supervisor never moves the robot anyway).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, Protocol
+
+from simiam.physics.collision import plate_collides
+from simiam.physics.ir_ranging import cone_range
+from simiam.physics.segments import ObstacleEdges
+from simiam.physics.transform import transform_fast
+from simiam.robot.dynamics import move
+from simiam.robot.ir_sensor import distance_to_raw, mounted_cone
+from simiam.robot.quickbot import RobotSpec, limit_speeds
+from simiam.robot.wheel_encoder import WheelEncoder
+from simiam.trace import Trace
+from simiam.world.world import World
+
+Pose = tuple[float, float, float]
+
+
+class Brain(Protocol):
+    """What drives the robot: plain readings in, a plain command out."""
+
+    def step(self, readings: dict) -> dict: ...
+
+
+class BrainError(Exception):
+    """The brain returned something that is not a valid command."""
+
+
+class ConstantBrain:
+    """A trusted brain that requests the same wheel speeds every step (tests, benchmarks)."""
+
+    def __init__(self, vel_r: float, vel_l: float) -> None:
+        self.vel_r = vel_r
+        self.vel_l = vel_l
+
+    def step(self, readings: dict) -> dict:
+        return {"vel_r": self.vel_r, "vel_l": self.vel_l, "estimate": None, "state": "constant", "debug": {}}
+
+
+def _real(x: Any) -> bool:
+    return type(x) in (int, float) and math.isfinite(x)
+
+
+def _finite_or_none(x: Any) -> float | None:
+    return float(x) if _real(x) else None
+
+
+def _pair_or_none(p: Any) -> list[float] | None:
+    if isinstance(p, (list, tuple)) and len(p) == 2 and all(_real(c) for c in p):
+        return [float(p[0]), float(p[1])]
+    return None
+
+
+def _points_or_none(p: Any) -> list[list[float]] | None:
+    if (isinstance(p, (list, tuple)) and len(p) == 2
+            and all(isinstance(r, (list, tuple)) and len(r) == 5 and all(_real(c) for c in r) for r in p)):
+        return [[float(c) for c in p[0]], [float(c) for c in p[1]]]
+    return None
+
+
+def validate_command(command: Any) -> dict:
+    """Check and normalise a brain's command; raises BrainError with a readable message.
+
+    vel_r / vel_l must be finite real numbers (bool is rejected); estimate is None or three finite numbers;
+    state a string (or None). Debug values that are missing, NaN or malformed become None (they are only
+    plotted); unknown keys are dropped.
+    """
+    if not isinstance(command, dict):
+        raise BrainError(f"the command must be a dict, got {type(command).__name__}")
+    out: dict = {}
+    for key in ("vel_r", "vel_l"):
+        val = command.get(key)
+        if not _real(val):
+            raise BrainError(f"{key} must be a finite number (rad/s), got {val!r:.60}")
+        out[key] = float(val)
+    est = command.get("estimate")
+    if est is not None:
+        if not (isinstance(est, (list, tuple)) and len(est) == 3 and all(_real(c) for c in est)):
+            raise BrainError(f"estimate must be three finite numbers (x, y, theta), got {est!r:.80}")
+        est = [float(c) for c in est]
+    out["estimate"] = est
+    state = command.get("state")
+    if state is not None and not isinstance(state, str):
+        raise BrainError(f"state must be a string, got {type(state).__name__}")
+    out["state"] = None if state is None else state[:80]
+    debug = command.get("debug")
+    debug = debug if isinstance(debug, dict) else {}
+    out["debug"] = {"v": _finite_or_none(debug.get("v")), "w": _finite_or_none(debug.get("w")),
+                    "theta_g": _finite_or_none(debug.get("theta_g")),
+                    "u_ao": _pair_or_none(debug.get("u_ao")),
+                    "ir_points_wf": _points_or_none(debug.get("ir_points_wf"))}
+    return out
+
+
+@dataclass(frozen=True)
+class StepRecord:
+    """The state after one step. `vel_r`/`vel_l` are the limited wheel speeds set at this step (they move
+    the robot during the next step); `ir_raw`/`ir_range` are the values at the end of this step."""
+
+    step: int
+    t: float
+    pose: Pose
+    ticks: tuple[int, int]
+    ir_raw: tuple[int, ...]
+    ir_range: tuple[float, ...]
+    vel_r: float
+    vel_l: float
+    command: dict | None
+    collided: bool
+
+
+class Simulator:
+    """One QuickBot in `world`, stepped at a fixed dt and driven by `brain`.
+
+    >>> sim = Simulator(load_world("week3"), ConstantBrain(5, 5), spec_for_week(3))
+    >>> rec = sim.step(); trace = sim.run(seconds=10)
+    """
+
+    def __init__(self, world: World, brain: Brain, spec: RobotSpec, dt: float = 0.033,
+                 start: Pose | None = None) -> None:
+        if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
+            raise ValueError(f"dt must be a positive number of seconds, got {dt!r}")
+        self.world = world
+        self.brain = brain
+        self.spec = spec
+        self.dt = float(dt)
+        start = world.start if start is None else start
+        self.start: Pose = (float(start[0]), float(start[1]), float(start[2]))
+        self._x, self._y, self._theta = self.start
+        self._enc_r = WheelEncoder(spec.ticks_per_rev)
+        self._enc_l = WheelEncoder(spec.ticks_per_rev)
+        self._vel_r = 0.0
+        self._vel_l = 0.0
+        self._k = 0
+        self._collided = False
+        self._first_collision: dict | None = None
+        self._obstacles = ObstacleEdges(world.obstacles)
+        self._plate = list(spec.base_plate)
+        self._cones = [mounted_cone(m, spec.ir_max_range, spec.ir_spread) for m in spec.ir_mounts]
+        self._cone_points = [p for cone in self._cones for p in cone]
+        self._ir_range = [spec.ir_max_range] * len(self._cones)
+        self._ir_raw = [0] * len(self._cones)
+        self._update_ir()
+        self._last: StepRecord = self._record(None)
+
+    # --- read-only views of the true state (never handed to student code) ---
+    @property
+    def pose(self) -> Pose:
+        """The true pose (x, y, theta); theta is never wrapped."""
+        return (self._x, self._y, self._theta)
+
+    @property
+    def ticks(self) -> tuple[int, int]:
+        """Cumulative encoder ticks (right, left)."""
+        return (self._enc_r.ticks, self._enc_l.ticks)
+
+    @property
+    def ir_raw(self) -> tuple[int, ...]:
+        """The five raw IR values computed at the end of the last step."""
+        return tuple(self._ir_raw)
+
+    @property
+    def ir_range(self) -> tuple[float, ...]:
+        """The five true IR ranges (m) behind `ir_raw`."""
+        return tuple(self._ir_range)
+
+    @property
+    def wheel_speeds(self) -> tuple[float, float]:
+        """The limited wheel speeds (right, left) that the next step applies."""
+        return (self._vel_r, self._vel_l)
+
+    @property
+    def collided(self) -> bool:
+        """Whether the last step ended in a collision."""
+        return self._collided
+
+    @property
+    def first_collision(self) -> dict | None:
+        """{"step", "t", "pose"} of the first collision, or None."""
+        return self._first_collision
+
+    @property
+    def t(self) -> float:
+        """Simulated time: steps taken times dt."""
+        return self._k * self.dt
+
+    @property
+    def steps_taken(self) -> int:
+        return self._k
+
+    @property
+    def last(self) -> StepRecord:
+        """The record of the last step (or of the start, before any step)."""
+        return self._last
+
+    # --- physics ---
+    def _update_ir(self) -> None:
+        xs, ys = transform_fast((self._x, self._y, self._theta), self._cone_points)
+        spec = self.spec
+        obstacles = self._obstacles
+        lo, hi, mode = spec.ir_min_range, spec.ir_max_range, spec.ir_mode
+        for i in range(len(self._cones)):
+            d = cone_range(xs[6 * i:6 * i + 6], ys[6 * i:6 * i + 6], obstacles, lo, hi)
+            self._ir_range[i] = d
+            self._ir_raw[i] = distance_to_raw(d, mode)
+
+    def _check_collision(self) -> bool:
+        xs, ys = transform_fast((self._x, self._y, self._theta), self._plate)
+        return plate_collides(xs, ys, self._obstacles)
+
+    def _move(self) -> None:
+        spec = self.spec
+        self._x, self._y, self._theta = move(self._x, self._y, self._theta, self._vel_r, self._vel_l,
+                                             spec.wheel_radius, spec.wheel_base_length, self.dt)
+        self._enc_r.update(self._vel_r, self.dt)
+        self._enc_l.update(self._vel_l, self.dt)
+
+    def _think(self, t: float) -> dict:
+        readings = {"t": t, "dt": self.dt, "ticks": [self._enc_r.ticks, self._enc_l.ticks],
+                    "ir_raw": list(self._ir_raw)}
+        command = validate_command(self.brain.step(readings))
+        self._vel_r, self._vel_l = limit_speeds(command["vel_r"], command["vel_l"],
+                                                self.spec.max_vel, self.spec.min_vel)
+        return command
+
+    def _record(self, command: dict | None) -> StepRecord:
+        return StepRecord(self._k, self._k * self.dt, (self._x, self._y, self._theta),
+                          (self._enc_r.ticks, self._enc_l.ticks), tuple(self._ir_raw), tuple(self._ir_range),
+                          self._vel_r, self._vel_l, command, self._collided)
+
+    def step(self) -> StepRecord:
+        """Advance one time step in the original's order; returns the new state."""
+        self._k += 1
+        t = self._k * self.dt
+        if self.spec.week == 1:
+            command = self._think(t)
+            self._move()
+        else:
+            self._move()
+            command = self._think(t)
+        self._collided = self._check_collision()
+        if self._collided:
+            if self._first_collision is None:
+                self._first_collision = {"step": self._k, "t": t, "pose": [self._x, self._y, self._theta]}
+        else:
+            self._update_ir()
+        self._last = self._record(command)
+        return self._last
+
+    def run(self, seconds: float, stop_on_collision: bool = True,
+            until: Callable[[StepRecord], bool] | None = None) -> Trace:
+        """Step for `seconds` of simulated time (or until a collision / `until(record)` is true) and
+        return the Trace, row 0 being the state before this run's first step."""
+        n = int(round(seconds / self.dt))
+        trace = self.new_trace()
+        add_row(trace, self._last, self.start if self._k == 0 else None)
+        for _ in range(n):
+            rec = self.step()
+            add_row(trace, rec)
+            if (self._collided and stop_on_collision) or (until is not None and until(rec)):
+                break
+        trace.collision = self._first_collision
+        return trace
+
+    def new_trace(self) -> Trace:
+        """An empty Trace with this run's header (week, dt, world, robot, start, goal)."""
+        spec = self.spec
+        robot = {"base_plate": [list(p) for p in spec.base_plate],
+                 "ir_mounts": [list(m) for m in spec.ir_mounts],
+                 "ir_min_range": spec.ir_min_range, "ir_max_range": spec.ir_max_range,
+                 "ir_spread": spec.ir_spread, "wheel_radius": spec.wheel_radius,
+                 "wheel_base_length": spec.wheel_base_length}
+        goal = None if self.world.goal is None else list(self.world.goal)
+        return Trace(week=spec.week, dt=self.dt, world=self.world.to_json(), robot=robot,
+                     start=list(self.start), goal=goal)
+
+
+def add_row(trace: Trace, rec: StepRecord, estimate: Pose | None = None) -> None:
+    """Append one StepRecord to the trace's columns (the estimate and debug values come from its command)."""
+    s = trace.steps
+    cmd = rec.command or {}
+    est = cmd.get("estimate") or estimate
+    debug = cmd.get("debug") or {}
+    s["t"].append(rec.t)
+    s["x"].append(rec.pose[0])
+    s["y"].append(rec.pose[1])
+    s["theta"].append(rec.pose[2])
+    s["x_est"].append(None if est is None else est[0])
+    s["y_est"].append(None if est is None else est[1])
+    s["theta_est"].append(None if est is None else est[2])
+    s["ticks_r"].append(rec.ticks[0])
+    s["ticks_l"].append(rec.ticks[1])
+    s["vel_r"].append(rec.vel_r)
+    s["vel_l"].append(rec.vel_l)
+    s["ir_raw"].append(list(rec.ir_raw))
+    s["ir_range"].append(list(rec.ir_range))
+    for key in ("theta_g", "u_ao", "ir_points_wf", "v", "w"):
+        s[key].append(debug.get(key))
+    s["state"].append(cmd.get("state"))
+    s["collided"].append(rec.collided)
