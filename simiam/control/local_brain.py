@@ -1,0 +1,104 @@
+"""LocalBrain: runs a loaded submission in this process (simiam run, fidelity tests, the sandbox worker).
+
+Implements the simulator's Brain seam: `step(readings) -> command` with plain values only.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+
+from simiam.control.pose import Pose2D
+from simiam.control.robot_view import RobotView
+
+# settings that are plain attributes of the supervisor
+_ATTRIBUTES = ("v", "goal", "d_stop", "theta_d")
+
+
+class LocalBrain:
+    """Builds a RobotView and the student's QBSupervisor and steps them with the simulator's readings.
+
+    `settings` overrides what the student's QBSupervisor.__init__ set: `v`, `goal` (x, y), `d_stop`,
+    `theta_d`, the initial `state` (a controller name such as "go_to_goal"), and controller gains as
+    `{"gains": {"go_to_goal": {"Kp": 4, "Ki": 0.01, "Kd": 0.01}}}` (a top-level
+    `{"go_to_goal": {...}}` is accepted too). `start` is where the estimate starts (default: the week's).
+    """
+
+    def __init__(self, submission, week_config, settings: dict | None = None,
+                 start: tuple[float, float, float] | None = None) -> None:
+        self.week = week_config
+        self.robot = RobotView(week_config.spec, submission)
+        supervisor_class = submission.module("qb_supervisor").QBSupervisor
+        self.supervisor = supervisor_class()
+        self.supervisor.attach_robot(self.robot, Pose2D(*(start or week_config.start)))
+        self.apply_settings(settings or {})
+
+    def apply_settings(self, settings: dict) -> None:
+        """Override the supervisor's settings and controller gains (see the class docstring)."""
+        sup = self.supervisor
+        for key in _ATTRIBUTES:
+            if key in settings:
+                value = settings[key]
+                setattr(sup, key, tuple(value) if key == "goal" else value)
+        gains = dict(settings.get("gains") or {})
+        gains.update({k: v for k, v in settings.items() if k in sup.controllers and isinstance(v, dict)})
+        for name, values in gains.items():
+            if name not in sup.controllers:
+                have = ", ".join(sup.controllers)
+                raise ValueError(f"no controller {name!r} to set gains on (have: {have})")
+            for gain, value in values.items():
+                setattr(sup.controllers[name], gain, value)
+        if settings.get("state"):
+            sup.switch_to_state(settings["state"])
+
+    def step(self, readings: dict) -> dict:
+        """Feed one step's readings to the robot, run the supervisor once, return the command."""
+        self.robot.update(readings)
+        sup = self.supervisor
+        sup.outputs = None
+        sup.execute(readings["dt"])
+        ctrl = sup.current_controller
+        v, w = sup.outputs if sup.outputs is not None else (None, None)
+        return {
+            "vel_r": _plain(self.robot.vel_r),
+            "vel_l": _plain(self.robot.vel_l),
+            "estimate": [_plain(c) for c in sup.state_estimate.unpack()],
+            "state": str(sup.current_state),
+            "debug": {
+                "v": _maybe(v),
+                "w": _maybe(w),
+                "theta_g": _maybe(getattr(ctrl, "theta_g", None)),
+                "u_ao": _vector(getattr(ctrl, "u_ao", None), 2),
+                "ir_points_wf": _points(getattr(ctrl, "ir_distances_wf", None)),
+            },
+        }
+
+
+def _plain(x):
+    """A real number as a Python float (numpy scalars included); anything else unchanged for validation."""
+    if isinstance(x, numbers.Real) and not isinstance(x, bool):
+        return float(x)
+    return x
+
+
+def _maybe(x) -> float | None:
+    """A finite float for the debug channel, or None."""
+    x = _plain(x)
+    return x if isinstance(x, float) and math.isfinite(x) else None
+
+
+def _vector(u, n: int) -> list[float] | None:
+    try:
+        values = [_maybe(u[i]) for i in range(n)]
+    except (TypeError, IndexError, KeyError):
+        return None
+    return None if None in values else values
+
+
+def _points(p) -> list[list[float]] | None:
+    """IR points in the world frame as [[x]*5, [y]*5] (first two rows of a 2x5 or 3x5 array)."""
+    try:
+        rows = [[_maybe(p[r][i]) for i in range(5)] for r in range(2)]
+    except (TypeError, IndexError, KeyError):
+        return None
+    return None if any(None in row for row in rows) else rows
