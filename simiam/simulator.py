@@ -208,6 +208,15 @@ class Simulator:
         """The record of the last step (or of the start, before any step)."""
         return self._last
 
+    def sensor_positions(self) -> list[tuple[float, float]]:
+        """World positions of the five IR sensors (the cone apexes) at the current true pose."""
+        xs, ys = transform_fast((self._x, self._y, self._theta), [cone[0] for cone in self._cones])
+        return list(zip(xs, ys, strict=True))
+
+    def touches_obstacle(self) -> bool:
+        """The collision test at the current true pose (what the next physics pass would report)."""
+        return self._check_collision()
+
     # --- physics ---
     def _update_ir(self) -> None:
         xs, ys = transform_fast((self._x, self._y, self._theta), self._cone_points)
