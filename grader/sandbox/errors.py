@@ -1,0 +1,45 @@
+"""What a call into the student's worker can raise, each with a message a student can act on.
+
+The grader turns these into a failed check (fail closed): no valid answer means no points.
+"""
+
+from __future__ import annotations
+
+
+class SandboxError(Exception):
+    """Base class: something about the student's code stopped a call from giving a valid answer."""
+
+    def __init__(self, message: str) -> None:
+        super().__init__(message)
+        self.message = message
+
+
+class StudentError(SandboxError):
+    """The student's code raised (or returned something that cannot be sent back).
+
+    `file` and `line` point inside the submission when the failure happened there.
+    """
+
+    def __init__(self, message: str, type_name: str = "Exception", file: str | None = None,
+                 line: int | None = None) -> None:
+        super().__init__(message)
+        self.type_name = type_name
+        self.file = file
+        self.line = line
+
+    def __str__(self) -> str:
+        where = f"{self.file}:{self.line}: " if self.line else ""
+        where = where or (f"{self.file}: " if self.file else "")
+        return f"{where}{self.type_name}: {self.message}" if self.type_name else f"{where}{self.message}"
+
+
+class StudentTimeout(SandboxError):
+    """The call did not answer in time (infinite loop, sleep, or the submission's time budget ran out)."""
+
+
+class WorkerDied(SandboxError):
+    """The worker process ended or broke the protocol (exit, os._exit, crash, memory, output abuse)."""
+
+
+class SandboxUnavailable(Exception):
+    """The requested isolation (e.g. bubblewrap) cannot run on this machine. Not a student problem."""

@@ -1,0 +1,214 @@
+"""How the worker is isolated: bubblewrap when it works here, else a plain subprocess; and which uid it gets.
+
+`bwrap` mode: own PID, network, IPC and UTS namespaces; a root made of read-only binds of /usr, the Python
+environment, the trusted simiam package and the grader's probe/sandbox modules, the spliced submission at
+/submission; a private size-capped /tmp; minimal /proc and /dev; all capabilities dropped.
+`subprocess` mode: a separate process in its own session with the same rlimits and the same clean
+environment, but it sees the file system as its uid does.
+
+As root, the worker drops to a dedicated uid picked per worker, so RLIMIT_NPROC binds and every process the
+student starts (even after setsid or a double fork) can be killed by uid.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import os
+import random
+import shutil
+import site
+import subprocess
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import grader
+import simiam
+
+BWRAP = "bwrap"
+SUBPROCESS = "subprocess"
+_UID_RANGE = (200_000, 260_000)
+
+NOTES = {
+    BWRAP: "bubblewrap sandbox: no network, private /tmp, own PID namespace, read-only view of only the "
+           "spliced submission and the Python environment; rlimits on time, memory, processes, files.",
+    SUBPROCESS: "no bubblewrap: student code runs in a separate, resource-limited process{uid}; it is "
+                "killed with its whole process tree, and only JSON crosses back, but it has the network and "
+                "can read what its user can read (for example solutions/ if it is world-readable).",
+}
+
+
+@dataclass
+class WorkerPlan:
+    """Everything needed to start one worker: argv, environment, and what the kill has to cover."""
+
+    mode: str
+    argv: list[str]
+    env: dict[str, str]
+    uid: int | None           # dedicated uid the worker drops to (None: runs as the grader's user)
+    note: str
+    cwd: str
+    config: dict = field(default_factory=dict)
+
+
+def python_paths() -> list[str]:
+    """sys.path entries the worker needs: site-packages and the directories holding simiam and grader."""
+    paths = [p for p in site.getsitepackages() if os.path.isdir(p)]
+    for package in (simiam, grader):
+        root = str(Path(package.__file__).resolve().parent.parent)
+        if root not in paths:
+            paths.append(root)
+    return paths
+
+
+def trusted_binds(probes_file: Path | None) -> list[str]:
+    """Files and folders the worker may read, besides /usr and the submission (bwrap mode)."""
+    binds = {sys.prefix, sys.base_prefix, str(Path(sys.executable).resolve().parent.parent)}
+    binds.update(p for p in site.getsitepackages() if os.path.isdir(p))
+    simiam_dir = Path(simiam.__file__).resolve().parent
+    grader_dir = Path(grader.__file__).resolve().parent
+    binds.update({str(simiam_dir), str(grader_dir / "__init__.py"), str(grader_dir / "sandbox")})
+    probes = grader_dir / "probes.py"
+    if probes.exists():
+        binds.add(str(probes))
+    if probes_file is not None:
+        binds.add(str(probes_file))
+    return _outermost(sorted(binds))
+
+
+def _outermost(paths: list[str]) -> list[str]:
+    """Drop paths already inside another bound path, or under /usr (bound as a whole)."""
+    out: list[str] = []
+    for p in sorted(paths, key=len):
+        if p.startswith("/usr/") or any(p == q or p.startswith(q.rstrip("/") + "/") for q in out):
+            continue
+        out.append(p)
+    return out
+
+
+@functools.lru_cache(maxsize=1)
+def bwrap_path() -> str | None:
+    return shutil.which("bwrap")
+
+
+@functools.lru_cache(maxsize=1)
+def bwrap_works() -> tuple[bool, str]:
+    """Try a minimal sandbox once (namespaces may be forbidden even where the binary exists)."""
+    exe = bwrap_path()
+    if exe is None:
+        return False, "bubblewrap (bwrap) is not installed"
+    prefix = str(Path(sys.executable).resolve().parent.parent)
+    argv = [exe, *_bwrap_base(os.geteuid() == 0, 1 << 20), *_bind_args([sys.prefix, prefix]),
+            "--", sys.executable, "-I", "-S", "-c", "pass"]
+    try:
+        done = subprocess.run(argv, capture_output=True, timeout=10)
+    except (OSError, subprocess.TimeoutExpired) as exc:
+        return False, f"bubblewrap failed to start: {exc}"
+    if done.returncode != 0:
+        return False, "bubblewrap cannot create a sandbox here: " + done.stderr.decode(errors="replace")[:300]
+    return True, ""
+
+
+def _bwrap_base(as_root: bool, tmp_bytes: int) -> list[str]:
+    args = ["--die-with-parent", "--new-session", "--unshare-pid", "--unshare-net", "--unshare-ipc",
+            "--unshare-uts", "--unshare-cgroup-try", "--hostname", "sandbox", "--cap-drop", "ALL"]
+    if as_root:
+        # Only to drop to the dedicated uid in the worker's bootstrap; gone after the drop.
+        args += ["--cap-add", "CAP_SETUID", "--cap-add", "CAP_SETGID"]
+    else:
+        args += ["--unshare-user"]
+    args += ["--ro-bind", "/usr", "/usr"]
+    for top in ("/bin", "/sbin", "/lib", "/lib64", "/lib32"):
+        if os.path.islink(top):
+            args += ["--symlink", os.readlink(top), top]
+        elif os.path.isdir(top):
+            args += ["--ro-bind", top, top]
+    args += ["--ro-bind-try", "/etc/ld.so.cache", "/etc/ld.so.cache",
+             "--proc", "/proc", "--dev", "/dev", "--remount-ro", "/dev",
+             "--size", str(tmp_bytes), "--tmpfs", "/tmp"]
+    return args
+
+
+def _bind_args(paths: list[str]) -> list[str]:
+    """Read-only binds of `paths` at the same place, creating their ancestors world-traversable."""
+    made: set[str] = set()
+    args: list[str] = []
+    for path in _outermost(paths):
+        args += _mkdirs(path, made) + ["--ro-bind", path, path]
+    return args
+
+
+def _mkdirs(path: str, made: set[str]) -> list[str]:
+    """--dir for each missing ancestor, world-traversable (bwrap would make them 0700)."""
+    args: list[str] = []
+    parts = Path(path).parts[1:-1]
+    current = ""
+    for part in parts:
+        current += "/" + part
+        if current in made or current in ("/usr", "/tmp", "/proc", "/dev"):
+            continue
+        made.add(current)
+        args += ["--perms", "0755", "--dir", current]
+    return args
+
+
+def pick_uid() -> int:
+    """A uid no process uses now, so that killing by uid can only hit this worker's processes."""
+    used = set()
+    for entry in os.scandir("/proc"):
+        if entry.name.isdigit():
+            try:
+                used.add(entry.stat().st_uid)
+            except OSError:
+                pass
+    while True:
+        uid = random.randrange(*_UID_RANGE)
+        if uid not in used:
+            return uid
+
+
+def _readable_by_others(path: str) -> bool:
+    """True if a uid with no privileges can reach `path` (every ancestor o+x, the path itself o+r)."""
+    p = Path(path).resolve()
+    for ancestor in reversed(p.parents):
+        if not os.stat(ancestor).st_mode & 0o001:
+            return False
+    return bool(os.stat(p).st_mode & 0o004)
+
+
+def clean_env() -> dict[str, str]:
+    """The worker's whole environment: nothing inherited from the grader (no tokens, no paths)."""
+    return {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1",
+            "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+
+
+def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int,
+                extra_paths: tuple[str, ...] = (), probes_file: Path | None = None) -> WorkerPlan:
+    """Build the argv for one worker in `mode` ("bwrap" or "subprocess"). `config` is the worker's config."""
+    as_root = os.geteuid() == 0
+    worker_py = str(Path(__file__).resolve().parent / "worker.py")
+    config = dict(config, paths=python_paths() + list(extra_paths))
+    python = [sys.executable, "-I", "-S", "-B"]
+    env = clean_env()
+    if mode == BWRAP:
+        uid = pick_uid() if as_root else None
+        config.update(submission="/submission", uid=uid, gid=uid)
+        args = [bwrap_path() or "bwrap", *_bwrap_base(as_root, tmp_bytes),
+                *_bind_args(trusted_binds(probes_file) + list(extra_paths))]
+        args += ["--ro-bind", str(submission), "/submission", "--chdir", "/submission", "--clearenv"]
+        for key, value in env.items():
+            args += ["--setenv", key, value]
+        argv = args + ["--", *python, worker_py, json.dumps(config)]
+        return WorkerPlan(BWRAP, argv, env, uid, NOTES[BWRAP], "/", config)
+    uid = pick_uid() if as_root else None
+    config.update(submission=str(submission), uid=uid, gid=uid)
+    if uid is not None:
+        env_note = "" if all(_readable_by_others(p) for p in config["paths"] if os.path.exists(p)) else \
+            " (the Python environment is private to root, so only modules preloaded before the drop import)"
+        note = NOTES[SUBPROCESS].format(uid=f" under its own unprivileged uid{env_note}")
+    else:
+        note = NOTES[SUBPROCESS].format(uid=" under your own user (the process limit counts all your "
+                                             "processes)")
+    argv = [*python, worker_py, json.dumps(config)]
+    return WorkerPlan(SUBPROCESS, argv, env, uid, note, str(submission), config)

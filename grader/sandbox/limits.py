@@ -1,0 +1,59 @@
+"""Resource limits for one student's worker, and how the worker applies them to itself.
+
+Time is enforced twice: by the grader's wall clock per call and per submission (trusted, it kills the whole
+process tree), and by the kernel's RLIMIT_CPU on the worker. Memory, file size, core dumps, open files and
+the number of processes are kernel rlimits set in the worker before any student code runs. RLIMIT_NPROC
+counts processes per real uid and never binds for root, so the runner starts the worker under a dedicated
+unprivileged uid when the grader runs as root.
+"""
+
+from __future__ import annotations
+
+import resource
+from dataclasses import asdict, dataclass
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Limits for one submission. Times in seconds, sizes in bytes."""
+
+    call_seconds: float = 2.0          # wall time of one request (a probe, a scenario step...)
+    start_seconds: float = 10.0        # wall time for the worker to start and report ready
+    total_seconds: float = 120.0       # wall time of all calls of the submission together
+    cpu_seconds: int = 120             # RLIMIT_CPU of one worker process (kernel-enforced)
+    memory_bytes: int = 1536 * 2**20   # RLIMIT_AS (numpy alone maps ~300 MB of address space)
+    file_bytes: int = 8 * 2**20        # RLIMIT_FSIZE: largest file the worker may write (in its private /tmp)
+    open_files: int = 64               # RLIMIT_NOFILE
+    processes: int = 32                # RLIMIT_NPROC for the worker's uid (threads count too)
+    output_bytes: int = 64 * 1024      # student stdout+stderr kept for feedback; the rest is counted, dropped
+    tmp_bytes: int = 16 * 2**20        # size of the private /tmp (bubblewrap only)
+
+    def to_json(self) -> dict:
+        return asdict(self)
+
+    def for_worker(self, cpu_left: float) -> dict:
+        """The rlimits the worker applies to itself, with CPU capped by the submission's time left."""
+        cpu = max(1, min(self.cpu_seconds, int(cpu_left) + 1))
+        return {"cpu": cpu, "memory": self.memory_bytes, "file": self.file_bytes,
+                "open_files": self.open_files, "processes": self.processes}
+
+
+def apply_rlimits(spec: dict, *, set_processes: bool = True) -> None:
+    """Set the kernel limits described by `Limits.for_worker` on this process (inherited by children)."""
+    def cap(which: int, value: int) -> None:
+        _soft, hard = resource.getrlimit(which)
+        if hard != resource.RLIM_INFINITY:
+            value = min(value, hard)
+        resource.setrlimit(which, (value, value))
+
+    cap(resource.RLIMIT_CORE, 0)
+    # SIGXCPU at the soft limit kills Python; the hard limit one second later is SIGKILL.
+    _soft, hard = resource.getrlimit(resource.RLIMIT_CPU)
+    cpu = int(spec["cpu"])
+    hard_cpu = cpu + 1 if hard == resource.RLIM_INFINITY else min(cpu + 1, hard)
+    resource.setrlimit(resource.RLIMIT_CPU, (min(cpu, hard_cpu), hard_cpu))
+    cap(resource.RLIMIT_AS, int(spec["memory"]))
+    cap(resource.RLIMIT_FSIZE, int(spec["file"]))
+    cap(resource.RLIMIT_NOFILE, int(spec["open_files"]))
+    if set_processes:
+        cap(resource.RLIMIT_NPROC, int(spec["processes"]))

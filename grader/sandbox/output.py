@@ -1,0 +1,58 @@
+"""Capture of the student's stdout and stderr: the first bytes are kept for feedback, the rest is counted.
+
+The worker writes to a pipe that a daemon thread drains as fast as it can, so printing 100 MB neither
+blocks the worker on a full pipe nor fills the grader's memory or disk. Nothing read here is ever parsed:
+a "100/100" or a fake result JSON printed by student code is only shown back to the student, truncated.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+
+
+class CappedOutput:
+    """Drains `fd` in a thread; keeps the first `cap` bytes."""
+
+    def __init__(self, fd: int, cap: int) -> None:
+        self.cap = cap
+        self.total = 0
+        self._kept = bytearray()
+        self._lock = threading.Lock()
+        self._fd = fd
+        self._thread = threading.Thread(target=self._drain, name="sandbox-output", daemon=True)
+        self._thread.start()
+
+    def _drain(self) -> None:
+        try:
+            while True:
+                data = os.read(self._fd, 1 << 16)
+                if not data:
+                    break
+                with self._lock:
+                    room = self.cap - len(self._kept)
+                    if room > 0:
+                        self._kept += data[:room]
+                    self.total += len(data)
+        except OSError:
+            pass
+        finally:
+            os.close(self._fd)
+
+    def join(self, timeout: float = 1.0) -> None:
+        """Wait for the writer side to close (all worker processes gone)."""
+        self._thread.join(timeout)
+
+    @property
+    def dropped(self) -> int:
+        with self._lock:
+            return self.total - len(self._kept)
+
+    def text(self) -> str:
+        """What the student printed, truncated, with a note of how much was dropped."""
+        with self._lock:
+            text = self._kept.decode("utf-8", errors="replace")
+            dropped = self.total - len(self._kept)
+        if dropped:
+            text += f"\n[... {dropped} more bytes of output not kept]"
+        return text

@@ -1,0 +1,146 @@
+"""Framing of the grader <-> worker messages: one JSON object per line, on a private pipe pair.
+
+Both directions use the same framing. The grader side is strict because the worker is untrusted after
+student code has run: a message larger than the cap, a NaN/Infinity token, a duplicate key, or anything
+but JSON types is a protocol violation. Non-finite floats that the student really returned are encoded
+explicitly as {"$float": "nan" | "inf" | "-inf"} and decoded back into floats, so the checks can say
+"returned NaN" instead of "broke the protocol".
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Any
+
+MAX_MESSAGE = 4 * 1024 * 1024  # bytes per message (a 30 s scenario step command is ~200 bytes)
+_FLOAT_TAG = "$float"
+_NONFINITE = {"nan": math.nan, "inf": math.inf, "-inf": -math.inf}
+
+
+class ProtocolError(Exception):
+    """A message that is not a well-formed, size-capped, JSON-only object."""
+
+
+def encode(message: dict) -> bytes:
+    """One message as a line of JSON (the grader only sends JSON it built; `allow_nan=False` keeps it so)."""
+    return json.dumps(message, allow_nan=False, separators=(",", ":")).encode() + b"\n"
+
+
+def _reject_constant(token: str) -> Any:
+    raise ProtocolError(f"non-JSON number {token!r} in message")
+
+
+def _no_duplicates(pairs: list[tuple[str, Any]]) -> dict:
+    out: dict = {}
+    for key, value in pairs:
+        if key in out:
+            raise ProtocolError(f"duplicate key {key!r} in message")
+        out[key] = value
+    if len(out) == 1 and _FLOAT_TAG in out:
+        tag = out[_FLOAT_TAG]
+        if tag not in _NONFINITE:
+            raise ProtocolError(f"bad {_FLOAT_TAG} value {tag!r}")
+        return _NONFINITE[tag]  # type: ignore[return-value]
+    return out
+
+
+def decode(line: bytes) -> dict:
+    """Parse one message strictly; raises ProtocolError on anything but a JSON object."""
+    if len(line) > MAX_MESSAGE:
+        raise ProtocolError(f"message of {len(line)} bytes exceeds the {MAX_MESSAGE} byte cap")
+    try:
+        value = json.loads(line.decode("utf-8"), parse_constant=_reject_constant,
+                           object_pairs_hook=_no_duplicates)
+    except ProtocolError:
+        raise
+    except (ValueError, RecursionError, UnicodeDecodeError) as exc:
+        raise ProtocolError(f"malformed message: {type(exc).__name__}: {str(exc)[:200]}") from None
+    if not isinstance(value, dict):
+        raise ProtocolError("message is not a JSON object")
+    return value
+
+
+class LineReader:
+    """Accumulates bytes from a pipe and yields complete lines, refusing any line above the cap."""
+
+    def __init__(self, cap: int = MAX_MESSAGE) -> None:
+        self.cap = cap
+        self._buf = bytearray()
+
+    def feed(self, data: bytes) -> None:
+        self._buf += data
+        if len(self._buf) > self.cap and b"\n" not in self._buf[: self.cap + 1]:
+            raise ProtocolError(f"message exceeds the {self.cap} byte cap")
+
+    def pop_line(self) -> bytes | None:
+        """The next complete line (without the newline), or None if none is complete yet."""
+        end = self._buf.find(b"\n")
+        if end < 0:
+            return None
+        line = bytes(self._buf[:end])
+        del self._buf[: end + 1]
+        return line
+
+    @property
+    def pending(self) -> int:
+        return len(self._buf)
+
+
+class NotJSON(TypeError):
+    """A value the student returned that has no JSON form (an object, a set, a huge int...)."""
+
+
+def to_json(value: Any, *, depth: int = 0) -> Any:
+    """Convert what student code returned into plain JSON types (runs inside the worker).
+
+    Only exact built-in types and numpy scalars/arrays are converted; any other object (for example one
+    overriding __eq__ or __float__) is refused by name, so its methods are never trusted.
+    """
+    if depth > 32:
+        raise NotJSON("a value nested more than 32 levels deep")
+    kind = type(value)
+    if value is None or kind is bool or kind is str:
+        return value
+    if kind is int:
+        if value.bit_length() > 1024:
+            raise NotJSON("an integer too large to be a number of this course")
+        return value
+    if kind is float:
+        return value if math.isfinite(value) else {_FLOAT_TAG: _nonfinite_name(value)}
+    if kind in (list, tuple):
+        return [to_json(v, depth=depth + 1) for v in value]
+    if kind is dict:
+        out = {}
+        for key, item in value.items():
+            if type(key) is not str:
+                raise NotJSON(f"a dict with a {type(key).__name__} key")
+            out[key] = to_json(item, depth=depth + 1)
+        return out
+    converted = _numpy_to_python(value)
+    if converted is not _NO:
+        return to_json(converted, depth=depth + 1)
+    raise NotJSON(f"a {kind.__name__} object")
+
+
+def _nonfinite_name(x: float) -> str:
+    return "nan" if math.isnan(x) else ("inf" if x > 0 else "-inf")
+
+
+_NO = object()
+
+
+def _numpy_to_python(value: Any) -> Any:
+    """numpy.float64 & co. and ndarrays become Python numbers and lists; anything else is _NO."""
+    kind = type(value)
+    if getattr(kind, "__module__", None) != "numpy":
+        return _NO  # subclasses defined by student code live in their own module
+    import numpy
+
+    if isinstance(value, numpy.ndarray):
+        if value.dtype.kind not in "biuf":
+            return _NO
+        return value.tolist()
+    if isinstance(value, (numpy.floating, numpy.integer, numpy.bool_)):
+        return value.item()
+    return _NO

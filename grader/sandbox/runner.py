@@ -1,0 +1,202 @@
+"""One running worker: start it (per an isolation plan), exchange messages with deadlines, kill its tree.
+
+The grader talks to the worker over two pipes passed as extra file descriptors (never stdin/stdout/stderr).
+Every response must carry the id of the pending request, fit the size cap and parse as strict JSON; anything
+else is a protocol violation and the worker is killed. Killing covers the whole tree: the bubblewrap PID
+namespace dies with its init; in any mode a dedicated uid is swept with kill(-1) from a child that has
+become that uid, which reaches processes that called setsid or double-forked.
+"""
+
+from __future__ import annotations
+
+import os
+import select
+import signal
+import subprocess
+import time
+from dataclasses import dataclass
+
+from grader.sandbox.errors import StudentTimeout, WorkerDied
+from grader.sandbox.isolation import WorkerPlan
+from grader.sandbox.output import CappedOutput
+from grader.sandbox.protocol import LineReader, ProtocolError, decode, encode
+
+_SIGNAL_MEANING = {
+    signal.SIGXCPU: "it used up its CPU time limit",
+    signal.SIGXFSZ: "it wrote a file larger than the limit",
+    signal.SIGKILL: "it was killed (time or memory limit)",
+    signal.SIGSEGV: "it crashed (segmentation fault)",
+    signal.SIGABRT: "it aborted",
+}
+
+
+@dataclass
+class Exchange:
+    """Timing of one request: wall seconds between sending and the answer."""
+
+    op: str
+    seconds: float
+
+
+class WorkerProcess:
+    """A started worker. `request()` sends one message and waits for its answer until a deadline."""
+
+    def __init__(self, plan: WorkerPlan, output_cap: int) -> None:
+        self.plan = plan
+        req_r, self._req_w = os.pipe()
+        self._resp_r, resp_w = os.pipe()
+        out_r, out_w = os.pipe()
+        config = dict(plan.config, fd_in=req_r, fd_out=resp_w)
+        argv = plan.argv[:-1] + [_json(config)]
+        try:
+            self.proc = subprocess.Popen(
+                argv, env=plan.env, cwd=plan.cwd, stdin=subprocess.DEVNULL, stdout=out_w, stderr=out_w,
+                pass_fds=(req_r, resp_w), start_new_session=True, close_fds=True)
+        finally:
+            for fd in (req_r, resp_w, out_w):
+                os.close(fd)
+        self.output = CappedOutput(out_r, output_cap)
+        self._reader = LineReader()
+        self._next_id = 1
+        self.started = time.monotonic()
+        self.dead: str | None = None
+
+    # ---- messages ----------------------------------------------------------------------------------
+    def wait_ready(self, timeout: float) -> dict:
+        """The worker's first message (id 0) once its bootstrap is done."""
+        return self._receive(0, time.monotonic() + timeout, "start")
+
+    def request(self, op: str, fields: dict, timeout: float) -> dict:
+        """Send {"id", "op", **fields}; return the response dict (ok/value or ok/error)."""
+        if self.dead:
+            raise WorkerDied(self.dead)
+        rid = self._next_id
+        self._next_id += 1
+        try:
+            self._write(encode({**fields, "id": rid, "op": op}))
+        except (BrokenPipeError, OSError):
+            self._die("it stopped reading requests")
+        return self._receive(rid, time.monotonic() + timeout, op)
+
+    def _write(self, data: bytes) -> None:
+        view = memoryview(data)
+        while view:
+            _r, w, _x = select.select([], [self._req_w], [], 5.0)
+            if not w:
+                self._die("it stopped reading requests")
+            view = view[os.write(self._req_w, view):]
+
+    def _receive(self, rid: int, deadline: float, op: str) -> dict:
+        while True:
+            try:
+                line = self._reader.pop_line()
+            except ProtocolError as exc:
+                self._die(f"it broke the protocol ({exc})")
+            if line is not None:
+                try:
+                    message = decode(line)
+                except ProtocolError as exc:
+                    self._die(f"it broke the protocol ({exc})")
+                if message.get("id") != rid or type(message.get("ok")) is not bool:
+                    self._die("it sent an answer that does not match the question")
+                return message
+            left = deadline - time.monotonic()
+            if left <= 0:
+                self.kill()
+                what = "start" if op == "start" else f"answer ({op})"
+                raise StudentTimeout(f"no {what} within the time limit: an infinite loop or a long "
+                                     "sleep in your code?")
+            ready, _w, _x = select.select([self._resp_r], [], [], left)
+            if not ready:
+                continue
+            data = os.read(self._resp_r, 1 << 16)
+            if not data:
+                self._die(self._exit_reason())
+            try:
+                self._reader.feed(data)
+            except ProtocolError as exc:
+                self._die(f"it broke the protocol ({exc})")
+
+    def _die(self, reason: str) -> None:
+        self.kill()
+        self.dead = reason
+        raise WorkerDied(reason)
+
+    def _exit_reason(self) -> str:
+        try:
+            code = self.proc.wait(timeout=1.0)
+        except subprocess.TimeoutExpired:
+            return "it closed the grader's channel"
+        if code < 0:
+            return _SIGNAL_MEANING.get(-code, f"it was ended by signal {-code}")
+        if code > 128 and code - 128 in _SIGNAL_MEANING:  # bubblewrap reports the child's signal this way
+            return _SIGNAL_MEANING[code - 128]
+        return f"your code ended the worker process (exit status {code}, e.g. sys.exit or os._exit)"
+
+    # ---- ending ------------------------------------------------------------------------------------
+    def kill(self) -> None:
+        """Kill the worker and every process it started; safe to call more than once."""
+        if self.proc.poll() is None:
+            try:
+                os.killpg(self.proc.pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+            try:
+                self.proc.kill()
+            except ProcessLookupError:
+                pass
+        if self.plan.uid is not None:
+            kill_uid(self.plan.uid)
+        try:
+            self.proc.wait(timeout=5.0)
+        except subprocess.TimeoutExpired:
+            pass
+        for fd in (self._req_w, self._resp_r):
+            try:
+                os.close(fd)
+            except OSError:
+                pass
+        self._req_w = self._resp_r = -1
+        self.output.join(1.0)
+        if self.dead is None:
+            self.dead = "it was stopped"
+
+    def close(self) -> None:
+        self.kill()
+
+
+def kill_uid(uid: int, rounds: int = 20) -> None:
+    """SIGKILL every process of `uid` (a uid used only by this worker), until none is left."""
+    for _ in range(rounds):
+        if not _uid_alive(uid):
+            return
+        pid = os.fork()
+        if pid == 0:  # child: become the uid, then signal everything it owns (never returns)
+            try:
+                os.setgroups([])
+                os.setresgid(uid, uid, uid)
+                os.setresuid(uid, uid, uid)
+                os.kill(-1, signal.SIGKILL)
+            finally:
+                os._exit(0)
+        os.waitpid(pid, 0)
+        time.sleep(0.002)
+
+
+def _uid_alive(uid: int) -> bool:
+    for entry in os.scandir("/proc"):
+        if entry.name.isdigit():
+            try:
+                if entry.stat().st_uid == uid:
+                    with open(f"/proc/{entry.name}/stat", "rb") as stat:
+                        if stat.read().rsplit(b")", 1)[1].split()[0] != b"Z":
+                            return True
+            except (OSError, IndexError):
+                pass
+    return False
+
+
+def _json(config: dict) -> str:
+    import json
+
+    return json.dumps(config)

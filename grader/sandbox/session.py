@@ -1,0 +1,235 @@
+"""StudentSession: the grader's handle on one submission's sandboxed worker; RemoteBrain over it (Seam 1).
+
+    with StudentSession(3, spliced_dir) as session:
+        session.load()                                   # {"modules": {...}, "errors": [...]}
+        value = session.call("probe", name="uni_to_diff", args={"v": 0.1, "w": 0.5})
+        sim = Simulator(world, RemoteBrain(session, settings), spec=..., dt=...)
+
+`call` returns the worker's JSON value (untrusted: check it with grader.sandbox.validate) or raises
+StudentError (the student's code raised; file and line inside the submission), StudentTimeout (per call, or
+the submission's total budget is spent), WorkerDied (exit, kill, limits, protocol abuse). After a kill the
+next call starts a fresh worker, unless importing the submission is what killed it: then every call raises
+that same WorkerDied without starting again.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import Any
+
+from grader.sandbox import isolation
+from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeout, WorkerDied
+from grader.sandbox.limits import Limits
+from grader.sandbox.protocol import to_json
+from grader.sandbox.runner import WorkerProcess
+
+_KEEP_OUTPUTS = 8  # output of the last workers of a session shown in feedback
+
+
+class StudentSession:
+    """One submission's worker, started lazily, restarted after a kill, always killed on close()."""
+
+    def __init__(self, week: int, spliced_dir: Path | str, limits: Limits | None = None, *,
+                 sandbox: str = "auto", probes: str = "grader.probes", probes_file: Path | None = None,
+                 extra_paths: tuple[str, ...] = (),
+                 loader: str = "simiam.course.loader:load_submission") -> None:
+        self.week = int(week)
+        self.spliced_dir = Path(spliced_dir).resolve()
+        self.limits = limits or Limits()
+        self.isolation = _choose(sandbox)
+        self._config = {"week": self.week, "probes": probes, "loader": loader}
+        self._extra_paths = tuple(str(Path(p).resolve()) for p in extra_paths)
+        self._probes_file = probes_file
+        self._worker: WorkerProcess | None = None
+        self._outputs: list[CappedText] = []
+        self._load: dict | None = None
+        self._load_death: WorkerDied | None = None
+        self.isolation_note = ""
+        self.seconds_used = 0.0      # wall time of calls, counted against limits.total_seconds
+        self.calls = 0
+        self.starts = 0
+        self.start_seconds: list[float] = []
+
+    # ---- public ------------------------------------------------------------------------------------
+    def load(self) -> dict:
+        """Load the submission in the worker: {"modules": {stem: names}, "errors": [LoadError JSON]}."""
+        self._ensure_worker()
+        assert self._load is not None
+        return self._load
+
+    def call(self, op: str, timeout: float | None = None, **fields: Any) -> Any:
+        """Run `op` in the worker and return its JSON value (see the module docstring for errors)."""
+        if op == "load":
+            return self.load()
+        self._ensure_worker()
+        return self._request(op, fields, timeout)
+
+    def output(self) -> str:
+        """What the student's code printed (stdout and stderr together), truncated for feedback."""
+        texts = [o.text() for o in self._outputs]
+        if self._worker is not None:
+            texts.append(self._worker.output.text())
+        return "\n".join(t for t in texts if t)
+
+    def close(self) -> None:
+        """Kill the worker and everything it started."""
+        if self._worker is not None:
+            self._retire()
+
+    def __enter__(self) -> StudentSession:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    # ---- internals ---------------------------------------------------------------------------------
+    def _ensure_worker(self) -> None:
+        if self._load_death is not None:
+            raise WorkerDied(self._load_death.message)
+        if self._worker is not None and self._worker.dead is None:
+            return
+        if self._worker is not None:
+            self._retire()
+        self._budget_left()
+        began = time.monotonic()
+        plan = isolation.plan_worker(
+            self.isolation, self.spliced_dir,
+            dict(self._config, rlimits=self.limits.for_worker(self.limits.total_seconds - self.seconds_used)),
+            tmp_bytes=self.limits.tmp_bytes, extra_paths=self._extra_paths, probes_file=self._probes_file)
+        self.isolation_note = plan.note
+        self._worker = WorkerProcess(plan, self.limits.output_bytes)
+        self.starts += 1
+        try:
+            self._worker.wait_ready(self.limits.start_seconds)
+        except (StudentTimeout, WorkerDied) as exc:
+            self._retire()
+            raise WorkerDied(f"the sandbox did not start: {exc.message}. "
+                             f"Output: {self.output()[-500:]}") from None
+        self.start_seconds.append(time.monotonic() - began)
+        try:
+            value = self._request("load", {}, None)
+        except (WorkerDied, StudentTimeout) as exc:
+            self._load_death = WorkerDied(f"while your files were being imported, {exc.message}")
+            raise self._load_death from None
+        except StudentError as exc:
+            value = {"modules": {}, "errors": [{"file": exc.file, "line": exc.line, "message": str(exc)}]}
+        if self._load is None:
+            self._load = _check_load(value)
+
+    def _request(self, op: str, fields: dict, timeout: float | None) -> Any:
+        assert self._worker is not None
+        limit = min(timeout or self.limits.call_seconds, self._budget_left())
+        began = time.monotonic()
+        self.calls += 1
+        try:
+            response = self._worker.request(op, to_json(fields), limit)
+        except StudentTimeout as exc:
+            if limit < (timeout or self.limits.call_seconds):
+                raise StudentTimeout("the submission used up its total time of "
+                                     f"{self.limits.total_seconds:g} s") from None
+            raise StudentTimeout(f"{exc.message} (limit {limit:g} s)") from None
+        finally:
+            self.seconds_used += time.monotonic() - began
+        if response["ok"]:
+            return response.get("value")
+        raise _student_error(response.get("error"))
+
+    def _budget_left(self) -> float:
+        left = self.limits.total_seconds - self.seconds_used
+        if left <= 0:
+            raise StudentTimeout(f"the submission used up its total time of {self.limits.total_seconds:g} s")
+        return left
+
+    def _retire(self) -> None:
+        worker, self._worker = self._worker, None
+        if worker is not None:
+            worker.close()
+            self._outputs.append(CappedText(worker.output.text()))
+            del self._outputs[:-_KEEP_OUTPUTS]
+
+
+class CappedText:
+    """Output of a worker that has ended."""
+
+    def __init__(self, text: str) -> None:
+        self._text = text
+
+    def text(self) -> str:
+        return self._text
+
+
+def _choose(sandbox: str) -> str:
+    if sandbox not in ("auto", isolation.BWRAP, isolation.SUBPROCESS):
+        raise ValueError(f"sandbox must be auto, bwrap or subprocess, not {sandbox!r}")
+    if sandbox == isolation.SUBPROCESS:
+        return sandbox
+    works, why = isolation.bwrap_works()
+    if works:
+        return isolation.BWRAP
+    if sandbox == isolation.BWRAP:
+        raise SandboxUnavailable(why)
+    return isolation.SUBPROCESS
+
+
+def _student_error(error: Any) -> StudentError:
+    """Rebuild a student error from the worker's (untrusted) description, keeping only sane fields."""
+    if not isinstance(error, dict):
+        return StudentError("the worker reported an error it could not describe", "Error")
+    kind = error.get("type") if isinstance(error.get("type"), str) else "Error"
+    message = error.get("message") if isinstance(error.get("message"), str) else ""
+    file = error.get("file") if isinstance(error.get("file"), str) else None
+    line = error.get("line") if type(error.get("line")) is int else None
+    if kind == "NotJSON":
+        message = f"your code returned {message}, which cannot be sent to the grader " \
+                  "(only numbers, strings, lists and dicts can)"
+        kind = ""
+    return StudentError(message[:1000], kind[:100], file, line)
+
+
+def _check_load(value: Any) -> dict:
+    if not isinstance(value, dict):
+        return {"modules": {}, "errors": [{"file": None, "line": None, "message": "load returned nothing"}]}
+    modules = value.get("modules") if isinstance(value.get("modules"), dict) else {}
+    errors = [e for e in value.get("errors", []) if isinstance(e, dict)] \
+        if isinstance(value.get("errors"), list) else []
+    return {"modules": modules, "errors": errors}
+
+
+class RemoteBrain:
+    """Seam 1 Brain running the student's supervisor in the session's worker.
+
+    The first step sends `brain_start` with `settings`; each step sends the readings and validates the
+    command with simiam.simulator.validate_command. Raises the session's errors (StudentError,
+    StudentTimeout, WorkerDied) or BrainError for an invalid command; a scenario check turns either into a
+    failure with its message.
+    """
+
+    def __init__(self, session: StudentSession, settings: dict | None = None,
+                 step_timeout: float | None = None) -> None:
+        self.session = session
+        self.settings = settings
+        self.step_timeout = step_timeout
+        self._started = False
+
+    def step(self, readings: dict) -> dict:
+        if not self._started:
+            self.session.call("brain_start", settings=self.settings)
+            self._started = True
+        command = self.session.call("brain_step", timeout=self.step_timeout, readings=readings)
+        return _validate_command(command)
+
+
+def _validate_command(command: Any) -> dict:
+    try:
+        from simiam.simulator import validate_command
+    except ImportError:  # the simulator is not there yet: do the minimal type check ourselves
+        from grader.sandbox.validate import as_float
+
+        if not isinstance(command, dict):
+            raise StudentError("your supervisor returned no command", "") from None
+        as_float(command.get("vel_r"), "vel_r")
+        as_float(command.get("vel_l"), "vel_l")
+        return command
+    checked = validate_command(command)
+    return command if checked is None else checked

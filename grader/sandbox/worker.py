@@ -1,0 +1,72 @@
+"""Entry point of the student's worker process (runs inside the sandbox; never imported by the grader).
+
+Started as `python -I -S -B worker.py '<config JSON>'`: isolated mode, no site hooks (so no
+sitecustomize or .pth file from anywhere runs), no bytecode writes. The bootstrap, before any student code:
+drops to the dedicated uid (when started as root), applies the rlimits, sets sys.path to the interpreter's
+standard library plus the paths the grader names, imports the trusted modules, then answers requests on the
+private pipe pair. Student output goes to fds 1 and 2, which the grader captures separately with a cap.
+
+Ops: "ping"; "load" -> {"modules", "errors"}; "probe" (a function of the probes module, by allow-listed
+name, called as fn(submission, **args)); "brain_start" (settings); "brain_step" (readings) -> command.
+Every failure of student code (any BaseException, including SystemExit) becomes
+{"ok": false, "error": {"type", "message", "file", "line"}}; os._exit or a kill ends the process and the
+grader sees WorkerDied.
+"""
+
+import json
+import os
+import sys
+
+
+def _drop_privileges(uid: int, gid: int) -> None:
+    """Become `uid` for good (real, effective, saved); verify no capability is left."""
+    os.setgroups([])
+    os.setresgid(gid, gid, gid)
+    os.setresuid(uid, uid, uid)
+    if os.getresuid() != (uid, uid, uid) or os.getresgid() != (gid, gid, gid):
+        raise SystemExit("sandbox: could not drop privileges")
+    with open("/proc/self/status") as status:
+        for line in status:
+            if line.startswith(("CapPrm:", "CapEff:")) and int(line.split()[1], 16) != 0:
+                raise SystemExit("sandbox: capabilities left after dropping privileges")
+
+
+# Imported before the privilege drop, so they load even where the dedicated uid cannot read the Python
+# environment (subprocess mode with the interpreter under a private home directory).
+_PRELOAD = ("math", "cmath", "random", "statistics", "functools", "itertools", "collections", "copy",
+            "time", "json", "dataclasses", "typing", "enum", "abc", "numbers", "operator", "re", "warnings",
+            "traceback", "inspect", "numpy", "simiam.control", "simiam.course.weeks", "simiam.course.loader",
+            "grader.sandbox.limits", "grader.sandbox.worker_loop")
+
+
+def _bootstrap(config: dict) -> None:
+    # Interpreter stdlib (from -I -S) first, then only what the grader names: site-packages and the repo.
+    sys.path[:] = [p for p in sys.path if p] + list(config["paths"])
+    import importlib
+
+    for name in (*_PRELOAD, config.get("probes", "grader.probes"), config.get("loader", "").split(":")[0]):
+        try:
+            importlib.import_module(name)
+        except ImportError:
+            pass  # a missing optional module shows up later as a clear error
+    if config.get("uid") is not None:
+        _drop_privileges(int(config["uid"]), int(config["gid"]))
+    from grader.sandbox.limits import apply_rlimits
+
+    apply_rlimits(config["rlimits"])
+    os.environ.clear()
+    os.environ.update({"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8",
+                       "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"})
+
+
+def main() -> None:
+    config = json.loads(sys.argv[1])
+    del sys.argv[1:]  # nothing secret is passed, but student code has no use for it either
+    _bootstrap(config)
+    from grader.sandbox.worker_loop import serve
+
+    serve(config)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,150 @@
+"""The request loop inside the worker: dispatch ops to the loaded submission and answer in JSON.
+
+Imported by worker.py after the bootstrap has dropped privileges and set the limits. Everything here runs
+in the same process as student code, so nothing here is trusted by the grader: it only makes honest
+answers convenient (JSON conversion, file and line of an exception). The grader validates every value.
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import os
+import sys
+import traceback
+from pathlib import Path
+from typing import Any
+
+from grader.sandbox.protocol import LineReader, NotJSON, ProtocolError, decode, encode, to_json
+
+
+class _Worker:
+    def __init__(self, config: dict) -> None:
+        self.folder = Path(config["submission"])
+        self.week = int(config["week"])
+        self.loader_name = config.get("loader", "simiam.course.loader:load_submission")
+        self.probes = importlib.import_module(config.get("probes", "grader.probes"))
+        self.allowed = _probe_names(self.probes)
+        self.sub: Any = None
+        self.brain: Any = None
+        # Import the trusted framework before student code can touch sys.modules.
+        for name in ("math", "numpy", "simiam.control", "simiam.course.weeks"):
+            try:
+                importlib.import_module(name)
+            except ImportError:
+                pass
+
+    def submission(self) -> Any:
+        if self.sub is None:
+            module, _, func = self.loader_name.partition(":")
+            load = getattr(importlib.import_module(module), func)
+            self.sub = load(self.folder, self.week)
+        return self.sub
+
+    # ---- ops -------------------------------------------------------------------------------------
+    def op_ping(self, request: dict) -> Any:
+        return None
+
+    def op_load(self, request: dict) -> Any:
+        sub = self.submission()
+        modules = {name: sorted(k for k in vars(m) if not k.startswith("_"))[:200]
+                   for name, m in getattr(sub, "modules", {}).items()}
+        errors = [e.to_json() if hasattr(e, "to_json") else {"file": None, "line": None, "message": str(e)}
+                  for e in getattr(sub, "errors", [])]
+        return {"modules": modules, "errors": errors}
+
+    def op_probe(self, request: dict) -> Any:
+        name = request.get("name")
+        if name not in self.allowed:
+            raise LookupError(f"no probe named {name!r}")
+        args = request.get("args") or {}
+        return getattr(self.probes, name)(self.submission(), **args)
+
+    def op_brain_start(self, request: dict) -> Any:
+        from simiam.control.local_brain import LocalBrain
+        from simiam.course.weeks import week_config
+
+        self.brain = None
+        self.brain = LocalBrain(self.submission(), week_config(self.week), request.get("settings") or None)
+        return None
+
+    def op_brain_step(self, request: dict) -> Any:
+        if self.brain is None:
+            raise RuntimeError("brain_step before brain_start")
+        return self.brain.step(request["readings"])
+
+    # ---- framing ---------------------------------------------------------------------------------
+    def handle(self, request: dict) -> dict:
+        rid = request.get("id")
+        op = getattr(self, f"op_{request.get('op')}", None)
+        if op is None:
+            return {"id": rid, "ok": False, "error": {"type": "ProtocolError",
+                                                     "message": f"unknown op {request.get('op')!r}"}}
+        try:
+            value = to_json(op(request))
+        except NotJSON as exc:
+            return {"id": rid, "ok": False, "error": {"type": "NotJSON", "message": str(exc)}}
+        except BaseException as exc:  # noqa: BLE001 - SystemExit, KeyboardInterrupt and custom ones too
+            return {"id": rid, "ok": False, "error": self.describe(exc)}
+        return {"id": rid, "ok": True, "value": value}
+
+    def describe(self, exc: BaseException) -> dict:
+        file, line = None, None
+        folder = str(self.folder.resolve())
+        for frame in traceback.extract_tb(exc.__traceback__):
+            if os.path.dirname(os.path.abspath(frame.filename)) == folder:
+                file, line = os.path.basename(frame.filename), frame.lineno
+        try:
+            message = str(exc)
+        except BaseException:  # noqa: BLE001 - a student __str__ may raise anything
+            message = ""
+        if isinstance(exc, SystemExit):
+            message = f"your code called sys.exit({message})"
+        return {"type": type(exc).__name__[:100], "message": message[:1000], "file": file, "line": line}
+
+
+def _probe_names(module: Any) -> frozenset[str]:
+    """Allow-list: the module's __all__, else its public functions defined in it."""
+    names = getattr(module, "__all__", None)
+    if names is None:
+        names = [n for n, f in vars(module).items()
+                 if not n.startswith("_") and inspect.isfunction(f) and f.__module__ == module.__name__]
+    return frozenset(names)
+
+
+def serve(config: dict) -> None:
+    """Announce readiness, then answer requests until the grader closes the pipe."""
+    fd_in, fd_out = int(config["fd_in"]), int(config["fd_out"])
+    worker = _Worker(config)
+    _send(fd_out, {"id": 0, "ok": True, "value": {"pid": os.getpid(), "uid": os.getuid()}})
+    reader = LineReader()
+    while True:
+        line = reader.pop_line()
+        if line is None:
+            data = os.read(fd_in, 65536)
+            if not data:
+                return
+            reader.feed(data)
+            continue
+        try:
+            request = decode(line)
+        except ProtocolError:
+            return
+        response = worker.handle(request)
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except BaseException:  # noqa: BLE001, S110 - student may have replaced or closed them
+                pass
+        try:
+            _send(fd_out, response)
+        except (ValueError, TypeError):
+            _send(fd_out, {"id": response.get("id"), "ok": False,
+                           "error": {"type": "NotJSON", "message": "the answer could not be encoded"}})
+
+
+def _send(fd: int, message: dict) -> None:
+    data = encode(message)
+    while data:
+        written = os.write(fd, data)
+        data = data[written:]

@@ -1,0 +1,29 @@
+"""Probes for the sandbox tests (run inside the worker, like grader/probes.py).
+
+`attack(sub, ...)` calls `attack(**args)` in the submission's differential_drive.py; `uni_to_diff` calls the
+student's function with a stand-in robot.
+"""
+
+from types import SimpleNamespace
+
+__all__ = ["attack", "uni_to_diff", "echo"]
+
+
+def _robot() -> SimpleNamespace:
+    return SimpleNamespace(wheel_radius=0.0325, wheel_base_length=0.09925, max_vel=80.0, min_vel=0.0)
+
+
+def uni_to_diff(sub, v: float, w: float):
+    return sub.module("differential_drive").uni_to_diff(_robot(), v, w)
+
+
+def attack(sub, **args):
+    return sub.module("differential_drive").attack(**args)
+
+
+def echo(sub, value=None):
+    return value
+
+
+def not_allowed(sub):  # public but not in __all__: the worker must refuse it
+    return "should never run"
