@@ -1,7 +1,7 @@
 """Trace -> a self-contained replay page (Seam 2 in, one HTML file out; no network, no physics imports).
 
-`simiam run` and the grader's report call `write_replay(trace, path)` / `render_replay(trace)`. The page has the
-original Sim.I.am GUI's controls (home, rewind, play/pause, zoom buttons and mouse wheel, pan by dragging,
+`simiam run` and the grader's report call `write_replay(trace, path)` / `render_replay(trace)`. The page has
+the original Sim.I.am GUI's controls (home, rewind, play/pause, zoom buttons and mouse wheel, pan by dragging,
 click the robot to follow it) plus a time slider, playback speed, keyboard shortcuts and plots linked to the
 time cursor. Its script and style are inlined from `static/`, so the file opens offline and can be mailed.
 """
@@ -118,14 +118,18 @@ def pack_trace(trace: dict) -> dict:
         collision = None
     mounts = [[_num(m[0], 5), _num(m[1], 5), _num(m[2], 6)] for m in robot.get("ir_mounts") or []]
     goal = trace.get("goal")
+    if not (isinstance(goal, (list, tuple)) and len(goal) >= 2):
+        goal = None
+    obstacles = [poly(p) for p in world.get("obstacles", [])]
     return {
         "week": trace.get("week"), "dt": _num(trace.get("dt"), 6) or 0.033, "seconds": trace.get("seconds"),
-        "world": {"name": str(world.get("name", "")), "obstacles": [poly(p) for p in world.get("obstacles", [])]},
+        "world": {"name": str(world.get("name", "")), "obstacles": obstacles},
         "robot": {"base_plate": poly(robot["base_plate"]), "ir_mounts": mounts,
-                  "ir_min_range": robot.get("ir_min_range", 0.04), "ir_max_range": robot.get("ir_max_range", 0.3),
+                  "ir_min_range": robot.get("ir_min_range", 0.04),
+                  "ir_max_range": robot.get("ir_max_range", 0.3),
                   "ir_spread": robot.get("ir_spread", math.radians(6))},
         "start": trace.get("start"),
-        "goal": [_num(goal[0], 5), _num(goal[1], 5)] if isinstance(goal, (list, tuple)) and len(goal) >= 2 else None,
+        "goal": [_num(goal[0], 5), _num(goal[1], 5)] if goal else None,
         "collision": collision,
         "states": _states(steps.get("state") or [], n),
         "steps": cols,

@@ -30,7 +30,7 @@
   var speedSel = document.getElementById("speed");
 
   var st = { t: T0, index: 0, playing: false, speed: 1, following: false,
-             cx: 0, cy: 0, zoom: 100, W: 1, H: 1, lastFrame: null, lastStatusIndex: -1 };
+             cx: 0, cy: 0, zoom: 100, atHome: true, W: 1, H: 1, lastFrame: null, lastStatusIndex: -1 };
 
   // ---------- geometry ----------
   function pose(i) { return [S.x[i], S.y[i], S.theta[i]]; }
@@ -93,9 +93,11 @@
     st.cx = (BOUNDS[0] + BOUNDS[2]) / 2; st.cy = (BOUNDS[1] + BOUNDS[3]) / 2;
     st.zoom = Math.max(5, 0.92 * Math.min(st.W / Math.max(w, 0.2), st.H / Math.max(h, 0.2)));
     setFollowing(false);
+    st.atHome = true;
   }
   function zoomAt(factor, px, py) {
     var z = Math.min(20000, Math.max(5, st.zoom * factor));
+    st.atHome = false;
     if (px === undefined || st.following) { st.zoom = z; return; }
     var x = wx(px), y = wy(py);        // keep the world point under the cursor fixed
     st.zoom = z;
@@ -103,6 +105,7 @@
   }
   function setFollowing(on) {
     st.following = !!on;
+    if (st.following) { st.atHome = false; }
     followBtn.setAttribute("aria-pressed", st.following ? "true" : "false");
     if (st.following) { centreOnRobot(); }
   }
@@ -427,7 +430,7 @@
     if (!drag) { canvas.classList.toggle("over-robot", robotHit(e.clientX - r.left, e.clientY - r.top)); return; }
     var dx = e.clientX - drag.x, dy = e.clientY - drag.y;
     if (!drag.moved && Math.hypot(dx, dy) > 3) { drag.moved = true; setFollowing(false); canvas.classList.add("dragging"); }
-    if (drag.moved) { st.cx = drag.cx - dx / st.zoom; st.cy = drag.cy + dy / st.zoom; render(); }
+    if (drag.moved) { st.atHome = false; st.cx = drag.cx - dx / st.zoom; st.cy = drag.cy + dy / st.zoom; render(); }
   });
   canvas.addEventListener("pointerup", function () {
     if (drag && !drag.moved && robotHit(drag.px, drag.py)) { setFollowing(!st.following); render(); }
@@ -471,7 +474,17 @@
     }
     if (handled) { e.preventDefault(); }
   });
-  window.addEventListener("resize", function () { resize(); render(); });
+  // the canvas changes size when the status line wraps or the window changes: keep the drawing buffer in step
+  if (window.ResizeObserver) {
+    new ResizeObserver(function () {
+      resize();
+      if (st.atHome) { home(); }   // an untouched view stays fitted to the world
+      render();
+      document.body.setAttribute("data-ready", "1");
+    }).observe(canvas);
+  } else {
+    window.addEventListener("resize", function () { resize(); render(); });
+  }
 
   // collision mark on the timeline
   if (D.collision && TEND > T0) {
@@ -508,5 +521,5 @@
   resize();
   home();
   render();
-  document.body.setAttribute("data-ready", "1");
+  if (!window.ResizeObserver) { document.body.setAttribute("data-ready", "1"); }
 })();

@@ -90,13 +90,13 @@ def make_trace(week: int = 3, seconds: float = 15.0, dt: float = 0.033, goal=(1.
         if week == 4:
             state = "avoid_obstacles"
             pts_x, pts_y = [], []
-            for d, m in zip(ranges, IR_MOUNTS):
+            for d, m in zip(ranges, IR_MOUNTS, strict=True):
                 px, py = _to_world(m[0] + d * math.cos(m[2]), m[1] + d * math.sin(m[2]), xe, ye, the)
-                pts_x.append(round(px, 6))
-                pts_y.append(round(py, 6))
+                pts_x.append(px)
+                pts_y.append(py)
             pts = [pts_x, pts_y]
-            u_ao = [sum(g * (px - xe) for g, px in zip(gains, pts_x)),
-                    sum(g * (py - ye) for g, py in zip(gains, pts_y))]
+            u_ao = [sum(g * (px - xe) for g, px in zip(gains, pts_x, strict=True)),
+                    sum(g * (py - ye) for g, py in zip(gains, pts_y, strict=True))]
             heading = math.atan2(u_ao[1], u_ao[0])
         else:
             theta_g = math.atan2(goal[1] - ye, goal[0] - xe)
@@ -144,8 +144,19 @@ def load(name: str) -> dict:
     return json.loads((HERE / name).read_text())
 
 
+def _rounded(v, digits: int = 6):
+    """Round every float so that the committed samples stay small."""
+    if isinstance(v, float):
+        return round(v, digits)
+    if isinstance(v, list):
+        return [_rounded(x, digits) for x in v]
+    if isinstance(v, dict):
+        return {k: _rounded(x, digits) for k, x in v.items()}
+    return v
+
+
 if __name__ == "__main__":
     for fname, kwargs in SAMPLES.items():
-        tr = make_trace(**kwargs)
+        tr = _rounded(make_trace(**kwargs))
         (HERE / fname).write_text(json.dumps(tr, separators=(",", ":")))
         print(fname, len(tr["steps"]["t"]), "rows, collision:", tr["collision"])
