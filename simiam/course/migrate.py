@@ -1,0 +1,295 @@
+"""`simiam migrate weekN --from LAST_WEEK [--to THIS_WEEK] [--dry-run]`: carry your blocks forward.
+
+The manual's "How to migrate your solutions from last week", block by block. Each code block of this
+week's folder that also existed last week receives the body of your last week's block, re-indented, when
+  - you filled it in last week (it is no longer the placeholder, nor the code the course shipped), and
+  - the course did not change it this week (placeholders.py `revised_in`), and
+  - you have not already edited it in this week's folder (migrate never overwrites your work).
+Blocks that are new this week stay as shipped. Blocks are matched by file, enclosing function and position.
+
+All or nothing: if any file is missing, any marker was deleted or duplicated, or any block you would carry
+does not parse where it goes, nothing is written and every problem is listed with its file and line.
+Files are written through a temporary file and a rename, so none is ever left half-written.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from simiam.course.blocks import Block, BlockError, def_line, find_blocks, fingerprint, replace_bodies
+from simiam.course.placeholders import placeholder_for
+from simiam.course.shipped_blocks import SHIPPED
+from simiam.course.splice import check_body, read_submission_file
+
+EXIT_OK, EXIT_REFUSED, EXIT_USAGE = 0, 1, 2
+
+
+@dataclass
+class BlockMove:
+    """What happened to one block of this week's folder."""
+
+    file: str
+    block: str  # "GoToGoal.execute (block 2)"
+    moved: bool
+    why: str
+    line: int | None = None  # in this week's file
+
+    def __str__(self) -> str:
+        verb = "moved" if self.moved else "kept "
+        where = f"{self.file}:{self.line}" if self.line else self.file
+        return f"  {verb}  {where}  {self.block}: {self.why}"
+
+
+@dataclass
+class Migration:
+    """The plan (and, unless refused or a dry run, what was written)."""
+
+    week: int
+    source: Path
+    target: Path
+    moves: list[BlockMove] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    errors: list[BlockError] = field(default_factory=list)
+    texts: dict[str, str] = field(default_factory=dict)  # new text of each target file that changes
+    written: list[str] = field(default_factory=list)
+
+    @property
+    def refused(self) -> bool:
+        return bool(self.errors)
+
+    def report(self, dry_run: bool = False) -> str:
+        head = f"simiam migrate week{self.week}: from {self.source} into {self.target}"
+        if self.refused:
+            lines = [head, "Refused: nothing was changed. Fix these and run it again:"]
+            return "\n".join(lines + [f"  {e}" for e in self.errors])
+        lines = [head, *map(str, self.moves), *(f"  note   {n}" for n in self.notes)]
+        moved = sorted({m.file for m in self.moves if m.moved})
+        if not moved:
+            lines.append("Nothing to carry: this week's folder is left as it is.")
+        elif dry_run:
+            lines.append(f"Dry run: would write {', '.join(moved)}; nothing was changed.")
+        else:
+            lines.append(f"Wrote {', '.join(self.written)}.")
+        return "\n".join(lines)
+
+
+def _blocks(folder: Path, name: str, label: str, errors: list[BlockError]) -> tuple[str, list[Block]] | None:
+    path = folder / name
+    if not os.path.lexists(path):
+        errors.append(BlockError(label, None, f"missing file (expected {name} in {folder})"))
+        return None
+    try:
+        text = read_submission_file(path, label)
+        return text, find_blocks(text, label)
+    except BlockError as e:
+        errors.append(e)
+        return None
+
+
+def _check_layout(
+    blocks: list[Block], expected: list[tuple], text: str, label: str, week: int, errors: list[BlockError]
+) -> bool:
+    """The file's blocks are exactly those week `week` shipped (by scope and count), else errors."""
+    want: dict[str, int] = {}
+    for scope, *_ in expected:
+        want[scope] = want.get(scope, 0) + 1
+    got: dict[str, list[Block]] = {}
+    for b in blocks:
+        got.setdefault(b.scope, []).append(b)
+    ok = True
+    for scope, n in want.items():
+        have = got.get(scope, [])
+        if len(have) < n:
+            line = have[-1].start_line if have else def_line(text, scope) or None
+            errors.append(
+                BlockError(
+                    label,
+                    line,
+                    f"{scope} should have {n} code block(s) as week {week} "
+                    f"shipped it, found {len(have)} (START/END lines deleted?)",
+                )
+            )
+            ok = False
+        elif len(have) > n:
+            errors.append(
+                BlockError(
+                    label,
+                    have[n].start_line,
+                    f"{scope} has {len(have)} code blocks, week "
+                    f"{week} shipped {n} (START/END lines duplicated?)",
+                )
+            )
+            ok = False
+    for scope, have in got.items():
+        if scope not in want:
+            errors.append(
+                BlockError(
+                    label,
+                    have[0].start_line,
+                    f"a code block in {scope}, where week {week} "
+                    "has none (markers added or the function renamed?)",
+                )
+            )
+            ok = False
+    return ok
+
+
+def plan(week: int, source: Path, target: Path) -> Migration:
+    """Work out every block's fate without writing anything."""
+    mig = Migration(week, source, target)
+    last, this = SHIPPED.get(week - 1, {}), SHIPPED[week]
+    sources: dict[str, dict[tuple[str, int], Block]] = {}
+
+    def source_blocks(name: str) -> dict[tuple[str, int], Block] | None:
+        if name not in sources:
+            label = str(source / name)
+            found = _blocks(source, name, label, mig.errors)
+            ok = found is not None and _check_layout(
+                found[1], last[name], found[0], label, week - 1, mig.errors
+            )
+            sources[name] = {b.key: b for b in found[1]} if ok and found else None
+        return sources[name]
+
+    for name, rows in this.items():
+        label = str(target / name)
+        found = _blocks(target, name, label, mig.errors)
+        if found is None or not _check_layout(found[1], rows, found[0], label, week, mig.errors):
+            continue
+        text, blocks = found
+        shipped = {(scope, occ): fp for scope, occ, _, _, fp in rows}
+        bodies: dict[int, str] = {}
+        for t in blocks:
+            spec = placeholder_for(name, t.scope, t.occurrence)
+            row = (name, t.describe())
+            if spec is None or spec.week == week:
+                mig.moves.append(BlockMove(*row, False, "new this week: yours to write", t.start_line))
+                continue
+            if week in spec.revised_in:
+                mig.moves.append(
+                    BlockMove(*row, False, f"shipped version kept: {spec.revised_why}", t.start_line)
+                )
+                continue
+            last_rows = {(scope, occ): fp for scope, occ, _, _, fp in last.get(name, [])}
+            if t.key not in last_rows:
+                mig.moves.append(BlockMove(*row, False, f"not in week {week - 1}", t.start_line))
+                continue
+            src = source_blocks(name)
+            if src is None:
+                continue  # the error is already listed
+            s = src[t.key]
+            body, err = check_body(text, blocks, t, s, str(source / name))
+            if err:
+                mig.errors.append(err)
+                continue
+            fp = fingerprint(s.body)
+            if fp == fingerprint(spec.body("")):
+                why = (
+                    f"you had not filled it in week {week - 1} (still the placeholder); shipped version kept"
+                )
+                mig.moves.append(BlockMove(*row, False, why, t.start_line))
+            elif fp == last_rows[t.key]:
+                why = f"same as the course shipped in week {week - 1}; this week's version kept"
+                mig.moves.append(BlockMove(*row, False, why, t.start_line))
+            elif fingerprint(t.body) == fp:
+                why = (
+                    "already your code (migrated before)"
+                    if fp != shipped[t.key]
+                    else "your code is the same as this week's shipped code; nothing to move"
+                )
+                mig.moves.append(BlockMove(*row, False, why, t.start_line))
+            elif fingerprint(t.body) != shipped[t.key]:
+                mig.errors.append(
+                    BlockError(
+                        label,
+                        t.start_line,
+                        f"you already changed the block of {t.describe()} "
+                        "in this week's folder; migrate will not overwrite it (undo that "
+                        "edit, or copy the block by hand)",
+                    )
+                )
+            else:
+                bodies[t.ordinal] = body
+                mig.moves.append(
+                    BlockMove(*row, True, f"your code from {source / name}:{s.start_line}", t.start_line)
+                )
+        if bodies:
+            mig.texts[name] = replace_bodies(text, blocks, bodies)
+    for name, rows in last.items():
+        for scope, occ, *_ in rows:
+            if (scope, occ) not in {(r[0], r[1]) for r in this.get(name, [])}:
+                mig.notes.append(
+                    f"{name} {scope}: not carried, week {week} has no code block there "
+                    "(the course provides that code now)"
+                )
+    return mig
+
+
+def write_atomically(folder: Path, texts: dict[str, str]) -> list[str]:
+    """Write every file to a temporary file first, then rename them all into place."""
+    temps: list[tuple[str, Path]] = []
+    try:
+        for name, text in texts.items():
+            dest = folder / name
+            fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=".migrate", dir=folder)
+            temps.append((name, Path(tmp)))
+            with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
+                f.write(text)
+                f.flush()
+                os.fsync(f.fileno())
+            os.chmod(tmp, os.stat(dest).st_mode & 0o777)
+        done: list[str] = []
+        for name, tmp in temps:
+            try:
+                os.replace(tmp, folder / name)
+            except OSError as e:
+                e.strerror = f"{e.strerror} (already replaced: {', '.join(done) or 'none'})"
+                raise
+            done.append(name)
+    finally:
+        for _, tmp in temps:
+            if tmp.exists():
+                tmp.unlink()
+    return [name for name, _ in temps]
+
+
+def migrate(week: int, source: Path, target: Path, dry_run: bool = False) -> Migration:
+    """Plan the migration and, unless refused or `dry_run`, write it."""
+    mig = plan(week, Path(source), Path(target))
+    if not mig.refused and not dry_run and mig.texts:
+        mig.written = write_atomically(Path(target), mig.texts)
+    return mig
+
+
+def _week(text: str) -> int | None:
+    t = str(text).strip().lower().removeprefix("week")
+    return int(t) if t.isdigit() else None
+
+
+def main(args) -> int:
+    """`simiam migrate` (args: week, source, target, dry_run). Exit 0 done, 1 refused, 2 bad arguments."""
+    week = _week(args.week)
+    if week not in SHIPPED or week == min(SHIPPED):
+        print(
+            f"simiam migrate: no week {args.week!r} to migrate into (week2, week3 or week4)", file=sys.stderr
+        )
+        return EXIT_USAGE
+    source = Path(args.source)
+    target = Path(args.target) if args.target else Path("assignments") / f"week{week}"
+    for what, folder in (("--from", source), ("--to", target)):
+        if not folder.is_dir():
+            print(f"simiam migrate: {what} {folder}: no such folder", file=sys.stderr)
+            return EXIT_USAGE
+    if source.resolve() == target.resolve():
+        print("simiam migrate: --from and --to are the same folder", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        mig = migrate(week, source, target, dry_run=args.dry_run)
+    except OSError as e:  # e.g. a read-only folder: fails on the first temporary file, before any rename
+        print(f"simiam migrate: could not write into {target}: {e.strerror}", file=sys.stderr)
+        return EXIT_REFUSED
+    print(mig.report(dry_run=args.dry_run))
+    return EXIT_REFUSED if mig.refused else EXIT_OK
