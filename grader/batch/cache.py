@@ -1,0 +1,67 @@
+"""When a submission needs grading again: the cache key (submission content, grader, seed).
+
+Each per-student result stores its key under ``result["batch"]["cache_key"]``. A rerun skips a student
+whose stored key equals the new one, so a batch killed half-way resumes where it stopped, and changing
+the seed, the grader or the submission regrades exactly what changed.
+
+The grader's identity is a fingerprint of the installed grading code (``grader/`` except the batch
+plumbing, ``simiam/``, and the assignment stubs next to them when installed from a checkout), not only the
+version string: an instructor who fixes a check without bumping the version still gets a regrade.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from functools import lru_cache
+from importlib import metadata
+from pathlib import Path
+
+_SUFFIXES = {".py", ".j2", ".html", ".xml", ".json", ".css", ".js", ".txt"}
+# Batch plumbing does not change a grade, except task.py, which calls the grader and rewrites paths.
+_NOT_GRADING = ("grader/batch/",)
+_GRADING_TOO = ("grader/batch/task.py",)
+# Statuses worth keeping: a timeout or crash may be the machine's fault, so it is retried on a rerun.
+FINAL_STATUSES = ("graded", "invalid")
+
+
+def _package_version() -> str:
+    try:
+        return metadata.version("simiam")
+    except metadata.PackageNotFoundError:
+        return "0+unknown"
+
+
+@lru_cache(maxsize=1)
+def grader_fingerprint() -> str:
+    """``<version>+<12 hex>``: the package version and a hash of every file that can change a grade."""
+    import grader
+    import simiam
+
+    roots = [Path(grader.__file__).parent, Path(simiam.__file__).parent]
+    checkout = roots[0].parent
+    roots += [checkout / "assignments"] if (checkout / "assignments").is_dir() else []
+    digest = hashlib.sha256()
+    for root in roots:
+        for path in sorted(root.rglob("*")):
+            rel = f"{root.name}/{path.relative_to(root).as_posix()}"
+            if (path.suffix not in _SUFFIXES or not path.is_file() or "__pycache__" in path.parts
+                    or (rel.startswith(_NOT_GRADING) and rel not in _GRADING_TOO)):
+                continue
+            digest.update(rel.encode() + b"\x00" + hashlib.sha256(path.read_bytes()).digest())
+    return f"{_package_version()}+{digest.hexdigest()[:12]}"
+
+
+def cache_key(week: int, seed: int, hidden: bool, submission_sha256: str, grader: str) -> str:
+    """The key a stored result must carry to be reused."""
+    material = json.dumps({"format": 1, "week": week, "seed": seed, "hidden": hidden,
+                           "submission": submission_sha256, "grader": grader}, sort_keys=True)
+    return hashlib.sha256(material.encode()).hexdigest()
+
+
+def is_fresh(stored: dict | None, key: str) -> bool:
+    """True when ``stored`` (a per-student result, or None) can be reused for ``key``."""
+    if not isinstance(stored, dict) or stored.get("status") not in FINAL_STATUSES:
+        return False
+    batch = stored.get("batch")
+    return isinstance(batch, dict) and batch.get("cache_key") == key

@@ -1,0 +1,105 @@
+"""Class-level files built from the per-student results: ``gradebook.csv`` and the Gradescope export.
+
+Both are rebuilt from the stored ``<id>.json`` files at the end of every run (including a resumed or
+interrupted one), so they always agree with the per-student results on disk.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+from pathlib import Path
+
+from grader.batch.store import write_atomic, write_json
+
+GRADESCOPE_VISIBILITY = ("visible", "hidden", "after_due_date", "after_published")
+
+
+def check_ids(results: dict[str, dict]) -> list[str]:
+    """Every check id in the class, in the order the grader declares them (first graded result first)."""
+    ids: list[str] = []
+    seen: set[str] = set()
+    for sid in sorted(results):
+        for check in results[sid].get("checks") or []:
+            cid = check.get("id") if isinstance(check, dict) else None
+            if isinstance(cid, str) and cid not in seen:
+                seen.add(cid)
+                ids.append(cid)
+    return ids
+
+
+def class_max_score(results: dict[str, dict]) -> float | None:
+    """The week's maximum, from any graded result (a timed-out student's result has none of its own)."""
+    for result in results.values():
+        if result.get("status") == "graded" and isinstance(result.get("max_score"), (int, float)):
+            return float(result["max_score"])
+    return None
+
+
+def safe_cell(value: object) -> object:
+    """A CSV cell a spreadsheet will not run: text starting with = + - @ (a formula) gets a quote."""
+    if isinstance(value, str) and value[:1] in ("=", "+", "-", "@", "\t", "\r"):
+        return "'" + value
+    return value
+
+
+def gradebook_csv(results: dict[str, dict]) -> str:
+    """One row per student: id, one column of points per check, total, max, status, message."""
+    ids = check_ids(results)
+    fallback_max = class_max_score(results)
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(["student", *ids, "total", "max", "status", "message"])
+    for sid in sorted(results):
+        result = results[sid]
+        points = {c.get("id"): c.get("points") for c in result.get("checks") or [] if isinstance(c, dict)}
+        max_score = result.get("max_score")
+        if not isinstance(max_score, (int, float)):
+            max_score = fallback_max
+        row = [sid, *[_number(points.get(cid)) for cid in ids], _number(result.get("score", 0.0)),
+               _number(max_score), result.get("status", ""), _one_line(result.get("message", ""))]
+        writer.writerow([safe_cell(cell) for cell in row])
+    return buffer.getvalue()
+
+
+def _number(value: object) -> object:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return ""
+    return round(float(value), 6)
+
+
+def _one_line(text: object) -> str:
+    return " ".join(str(text or "").split())
+
+
+def gradescope_result(result: dict) -> dict:
+    """A Gradescope autograder ``results.json`` for one student's result."""
+    tests = []
+    for check in result.get("checks") or []:
+        if not isinstance(check, dict):
+            continue
+        visibility = check.get("visibility")
+        if visibility not in GRADESCOPE_VISIBILITY:
+            visibility = "after_due_date" if check.get("hidden") else "visible"
+        name = check.get("name") or check.get("id") or "check"
+        output = str(check.get("message") or "")
+        if check.get("status") in ("error", "timeout"):
+            output = f"[{check['status']}] {output}".strip()
+        tests.append({"name": f"{check.get('id')}: {name}" if check.get("id") else name,
+                      "score": float(_number(check.get("points")) or 0.0),
+                      "max_score": float(_number(check.get("max_points")) or 0.0),
+                      "status": "passed" if check.get("status") == "passed" else "failed",
+                      "output": output, "visibility": visibility})
+    score = _number(result.get("score"))
+    export = {"score": float(score) if score != "" else 0.0, "tests": tests,
+              "visibility": "visible", "stdout_visibility": "hidden"}
+    if result.get("status") != "graded" or result.get("message"):
+        export["output"] = f"{result.get('status', 'crashed')}: {result.get('message') or ''}".strip(": ")
+    return export
+
+
+def write_exports(out: Path, results: dict[str, dict], stems: dict[str, str]) -> None:
+    """Write ``gradebook.csv`` and ``gradescope/<id>/results.json`` for every student in ``results``."""
+    write_atomic(out / "gradebook.csv", gradebook_csv(results))
+    for sid, result in results.items():
+        write_json(out / "gradescope" / stems[sid] / "results.json", gradescope_result(result))

@@ -1,0 +1,268 @@
+"""``grade weekN --batch DIR``: grade a whole class, resumably, on this machine or a Dask cluster.
+
+The run, in order:
+
+1. list the students in DIR (one sub-folder or ``.zip`` each, named by student id);
+2. for each student, lazily as grading slots free up: read the files safely, hash them, and skip the
+   student if their stored result carries the same cache key (submission, grader, seed); a refused
+   submission gets ``invalid`` at once without using a grading process;
+3. grade the rest in parallel, each in its own killable grading process under a wall budget
+   (``timeout`` and ``crashed`` when that process hangs or dies);
+4. write each student's ``<id>.html`` then ``<id>.json`` atomically as soon as they finish;
+5. rebuild ``gradebook.csv``, ``gradescope/<id>/results.json``, ``summary.html`` and ``batch.json`` from
+   the per-student JSON files, also after Ctrl-C, so a rerun of the same command simply resumes.
+
+Every student gets the same seed (the contract: ``--seed N`` fixes every random choice), so results are
+comparable across the class and do not depend on order or ``--jobs``. Timing lives under ``"timing"``
+in each result, apart from what is compared.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import sys
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from datetime import datetime, timezone
+from pathlib import Path
+from typing import Any, TextIO
+
+from grader.batch.cache import cache_key, grader_fingerprint, is_fresh
+from grader.batch.executors import DaskExecutor, ExecutorError, LocalExecutor
+from grader.batch.exports import write_exports
+from grader.batch.fallback_page import fallback_page
+from grader.batch.progress import Progress
+from grader.batch.store import OutputBusy, exclusive, read_json, student_stem, write_atomic, write_json
+from grader.batch.submissions import Student, Submission, discover, pack, read_submission
+from grader.batch.summary import write_summary
+
+# grade_submission bounds each student check with its own timeouts; this budget only catches a grading
+# process that hangs or thrashes as a whole.
+DEFAULT_BUDGET_S = 300.0
+STATUSES = ("graded", "invalid", "timeout", "crashed")
+
+
+class BatchError(Exception):
+    """The batch cannot run at all (exit status 2)."""
+
+
+def default_jobs() -> int:
+    """The number of cores this process may use."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:
+        return os.cpu_count() or 1
+
+
+@dataclass
+class BatchOptions:
+    """Everything a batch run needs; :meth:`from_args` reads the ``grade`` command line."""
+
+    week: int
+    batch_dir: Path
+    out: Path
+    seed: int
+    jobs: int = field(default_factory=default_jobs)
+    hidden: bool = False
+    force: bool = False
+    quiet: bool = False
+    executor: str = "local"
+    scheduler: str | None = None
+    sandbox: str = "auto"
+    budget_s: float = DEFAULT_BUDGET_S
+
+    @classmethod
+    def from_args(cls, args: argparse.Namespace) -> BatchOptions:
+        week = int(args.week)
+        given = vars(args)
+        out = given.get("out") or Path("reports") / f"batch-week{week}"
+        return cls(week=week, batch_dir=Path(args.batch), out=Path(out), seed=int(args.seed),
+                   jobs=int(given.get("jobs") or default_jobs()), hidden=bool(given.get("hidden")),
+                   force=bool(given.get("force")), quiet=bool(given.get("quiet")),
+                   executor=given.get("executor") or "local", scheduler=given.get("scheduler"),
+                   sandbox=given.get("sandbox") or "auto",
+                   budget_s=float(given.get("timeout") or DEFAULT_BUDGET_S))
+
+
+def main(args: argparse.Namespace) -> int:
+    """Entry point behind ``grade weekN --batch DIR``. Exit status: 0 every submission graded, 1 some
+    invalid, timed out or crashed, 2 the batch could not run, 130 interrupted (rerun to resume)."""
+    def stop(_signum: int, _frame: Any) -> None:
+        raise KeyboardInterrupt
+    try:
+        signal.signal(signal.SIGTERM, stop)     # a kill from a scheduler stops as cleanly as Ctrl-C
+    except ValueError:
+        pass                                    # not the main thread
+    try:
+        options = BatchOptions.from_args(args)
+        report = run_batch(options)
+    except BatchError as exc:
+        print(f"grade: {exc}", file=sys.stderr)
+        return 2
+    if report["interrupted"]:
+        return 130
+    return 0 if report["counts"]["graded"] == report["students"] else 1
+
+
+def make_executor(options: BatchOptions) -> LocalExecutor | DaskExecutor:
+    """The executor the options ask for."""
+    if options.executor == "local":
+        return LocalExecutor(options.jobs, options.budget_s)
+    if options.executor == "dask":
+        return DaskExecutor(options.scheduler, options.budget_s, jobs=options.jobs)
+    raise BatchError(f"unknown executor {options.executor!r}; use 'local' or 'dask'")
+
+
+def run_batch(options: BatchOptions, grade_fn: Callable[[dict], dict] | str | None = None,
+              executor: Any = None, stream: TextIO | None = None) -> dict:
+    """Grade the class and return the run record written to ``batch.json``.
+
+    ``grade_fn(task) -> {"result": ..., "html": ...}`` defaults to :func:`grader.batch.task.grade_task`;
+    tests inject fakes. Raises BatchError if the batch cannot start.
+    """
+    if not options.batch_dir.is_dir():
+        raise BatchError(f"{options.batch_dir} is not a folder of submissions")
+    if options.week not in (1, 2, 3, 4):
+        raise BatchError(f"there is no week {options.week}; weeks are 1 to 4")
+    out = options.out.resolve()
+    students = [s for s in discover(options.batch_dir) if not _holds(s.path, out)]
+    if not students:
+        raise BatchError(f"{options.batch_dir} has no student folders or .zip files")
+    executor = executor if executor is not None else make_executor(options)
+    run = _Run(options, out, students, stream)
+    try:
+        with exclusive(out):
+            try:
+                executor.run(grade_fn or "grader.batch.task:grade_task", run.plan(), run.finish)
+            except KeyboardInterrupt:
+                run.interrupted = True
+            finally:
+                run.progress.close()
+            return run.rebuild(executor.describe())
+    except OutputBusy as exc:
+        raise BatchError(str(exc)) from None
+    except ExecutorError as exc:
+        raise BatchError(str(exc)) from None
+
+
+def _holds(path: Path, out: Path) -> bool:
+    """True if ``path`` is the output folder or contains it (an --out inside the class folder)."""
+    path = path.resolve()
+    return path == out or path in out.parents
+
+
+class _Run:
+    """State of one batch run: what is pending, what finished, and the progress line."""
+
+    def __init__(self, options: BatchOptions, out: Path, students: list[Student], stream: TextIO | None):
+        self.options, self.out, self.students = options, out, students
+        self.stems = {s.id: student_stem(s.id) for s in students}
+        self.grader = grader_fingerprint()
+        self.progress = Progress(len(students), stream=stream, quiet=options.quiet)
+        self.pending: dict[str, tuple[Submission, str]] = {}
+        self.record: dict[str, dict] = {}
+        self.interrupted = False
+        self.started = datetime.now(timezone.utc)
+        self.clock = time.monotonic()
+
+    def plan(self) -> Iterator[dict]:
+        """Tasks for the students that need grading, read one at a time as slots free up."""
+        for student in self.students:
+            submission = read_submission(student)
+            key = cache_key(self.options.week, self.options.seed, self.options.hidden, submission.sha256,
+                            self.grader)
+            stem = self.stems[student.id]
+            stored = read_json(self.out / f"{stem}.json")
+            if not self.options.force and is_fresh(stored, key) and (self.out / f"{stem}.html").is_file():
+                assert stored is not None
+                self.record[student.id] = {"status": stored["status"], "cached": True}
+                self.progress.done("skipped")
+                continue
+            self.pending[student.id] = (submission, key)
+            task = {"student": student.id, "display": student.path.name, "week": self.options.week,
+                    "seed": self.options.seed, "hidden": self.options.hidden, "sandbox": self.options.sandbox,
+                    "grader": self.grader}
+            if submission.refused is not None:
+                self.finish(task, {"status": "invalid", "value": None, "message": submission.refused,
+                                   "seconds": 0.0})
+                continue
+            task["files"] = pack(submission.files)
+            yield task
+
+    def finish(self, task: dict, outcome: dict) -> None:
+        """Store one student's outcome: HTML first, then the JSON that marks them done."""
+        sid = task["student"]
+        submission, key = self.pending.pop(sid)
+        result, html = self._settle(task, outcome)
+        result["submission"] = task["display"]
+        result["batch"] = {"student": sid, "cache_key": key, "submission_sha256": submission.sha256,
+                           "grader": self.grader, "root": submission.root}
+        if outcome.get("traceback"):
+            result["batch"]["traceback"] = outcome["traceback"]
+        result["timing"] = {"seconds": round(float(outcome.get("seconds") or 0.0), 3)}
+        stem = self.stems[sid]
+        write_atomic(self.out / f"{stem}.html", html if isinstance(html, str) else fallback_page(sid, result))
+        write_json(self.out / f"{stem}.json", result)
+        status = result["status"]
+        self.record[sid] = {"status": status, "cached": False, "seconds": result["timing"]["seconds"]}
+        if status != "graded":
+            self.progress.message(f"{sid}: {status}: {result.get('message', '')}")
+        self.progress.done(status)
+
+    def _settle(self, task: dict, outcome: dict) -> tuple[dict, str | None]:
+        """The student's result from the grading outcome; anything malformed counts as ``crashed``."""
+        if outcome.get("status") == "ok":
+            value = outcome.get("value")
+            result = value.get("result") if isinstance(value, dict) else None
+            if isinstance(result, dict) and result.get("status") in STATUSES:
+                return dict(result), value.get("html")
+            outcome = {"status": "crashed", "message": "the grader returned no usable result"}
+        status = outcome.get("status") if outcome.get("status") in STATUSES else "crashed"
+        return {"week": task["week"], "score": 0.0, "max_score": None, "status": status,
+                "seed": task["seed"], "grader_version": self.grader, "submission": task["display"],
+                "checks": [], "message": outcome.get("message") or status}, None
+
+    def rebuild(self, executor: dict) -> dict:
+        """Class files from the per-student JSONs on disk; returns the ``batch.json`` record."""
+        results = {}
+        for student in self.students:
+            stored = read_json(self.out / f"{self.stems[student.id]}.json")
+            if stored is not None:
+                results[student.id] = stored
+        stems = {sid: self.stems[sid] for sid in results}
+        write_exports(self.out, results, stems)
+        counts = dict.fromkeys(STATUSES, 0)
+        for result in results.values():
+            counts[result.get("status") if result.get("status") in counts else "crashed"] += 1
+        incomplete = len(self.students) - len(results)
+        meta = {"week": self.options.week, "seed": self.options.seed, "hidden": self.options.hidden,
+                "grader": self.grader, "incomplete": incomplete}
+        write_summary(self.out, results, stems, meta)
+        report = {"format": "simiam-batch/1", **meta, "batch_dir": str(self.options.batch_dir.resolve()),
+                  "out": str(self.out), "force": self.options.force, "sandbox": self.options.sandbox,
+                  **executor, "started": self.started.isoformat(timespec="seconds"),
+                  "finished": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+                  "seconds": round(time.monotonic() - self.clock, 3), "interrupted": self.interrupted,
+                  "students": len(self.students), "counts": counts,
+                  "this_run": {"graded_now": sum(not r["cached"] for r in self.record.values()),
+                               "skipped": sum(r["cached"] for r in self.record.values())},
+                  "per_student": {sid: {**self.record.get(sid, {}), "status": r.get("status"),
+                                        "score": r.get("score")} for sid, r in sorted(results.items())}}
+        write_json(self.out / "batch.json", report)
+        self._tell(report)
+        return report
+
+    def _tell(self, report: dict) -> None:
+        if self.options.quiet:
+            return
+        counts = ", ".join(f"{n} {s}" for s, n in report["counts"].items() if n)
+        stream = self.progress.stream
+        if self.interrupted:
+            stream.write(f"interrupted: {report['students'] - report['incomplete']} of {report['students']} "
+                         f"students have results; run the same command again to resume\n")
+        stream.write(f"week {report['week']}: {counts} ({report['this_run']['skipped']} reused); "
+                     f"gradebook {self.out / 'gradebook.csv'}, summary {self.out / 'summary.html'}\n")
+        stream.flush()

@@ -1,0 +1,187 @@
+"""The class folder: one sub-folder or ``.zip`` per student, named by student id.
+
+:func:`discover` lists the students; :func:`read_submission` reads one of them into memory as
+``{relative path: bytes}`` (the same limits for folders and zips), finds the folder that holds the
+student's files (a zip of ``week3/`` or of the whole course folder is fine) and hashes the content.
+What is hashed is exactly what is graded: the grading process receives these bytes, never the path.
+"""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from grader.batch.zips import JUNK_PARTS, Limits, SubmissionRefused, is_junk, read_zip
+
+# The files students edit (contract.md); used only to find the submission's root folder inside a zip.
+STUDENT_FILES = frozenset({"differential_drive.py", "quickbot.py", "qb_supervisor.py", "go_to_angle.py",
+                           "go_to_goal.py", "avoid_obstacles.py"})
+
+
+@dataclass(frozen=True)
+class Student:
+    """One entry of the class folder."""
+
+    id: str            # the folder name, or the zip name without ``.zip``
+    path: Path
+    kind: str          # "folder" | "zip" | "clash" (both a folder and a zip with this id)
+
+
+@dataclass
+class Submission:
+    """A student's files, read and checked. ``refused`` is set instead of ``files`` when not gradable."""
+
+    student: Student
+    files: dict[str, bytes] = field(default_factory=dict)
+    sha256: str = ""
+    refused: str | None = None
+    root: str = ""     # the folder inside the zip/folder the files were taken from ("" = top level)
+
+
+def discover(batch_dir: Path) -> list[Student]:
+    """Every student in ``batch_dir``, sorted by id. Hidden entries and stray files are skipped."""
+    found: dict[str, list[tuple[str, Path]]] = {}
+    for entry in sorted(batch_dir.iterdir()):
+        if entry.name.startswith(".") or entry.name.startswith("__MACOSX"):
+            continue
+        if entry.is_dir() and not entry.is_symlink():
+            found.setdefault(entry.name, []).append(("folder", entry))
+        elif entry.suffix.lower() == ".zip" and entry.is_file() and not entry.is_symlink():
+            found.setdefault(entry.name[:-4], []).append(("zip", entry))
+    students = []
+    for sid, entries in sorted(found.items()):
+        kind, path = entries[0] if len(entries) == 1 else ("clash", entries[0][1])
+        students.append(Student(sid, path, kind))
+    return students
+
+
+def read_submission(student: Student, limits: Limits | None = None) -> Submission:
+    """Read and check one student's files; a refusal is recorded, never raised."""
+    limits = limits or Limits()
+    try:
+        if student.kind == "clash":
+            raise SubmissionRefused(f"both a folder and a zip are named {student.id!r}; keep one")
+        raw = read_zip(student.path, limits) if student.kind == "zip" else read_folder(student.path, limits)
+        root, files = find_root(raw)
+        if not files:
+            raise SubmissionRefused("the submission has no files")
+    except SubmissionRefused as refused:
+        return Submission(student, sha256=_hash_path(student.path), refused=str(refused))
+    return Submission(student, files=files, sha256=content_hash(files), root=root)
+
+
+def read_folder(folder: Path, limits: Limits | None = None) -> dict[str, bytes]:
+    """Read a student's folder with the zip limits. A link that leads outside the folder is refused."""
+    limits = limits or Limits()
+    base = folder.resolve()
+    files: dict[str, bytes] = {}
+    total = 0
+    for dirpath, dirnames, filenames in os.walk(folder, followlinks=False):
+        here = Path(dirpath)
+        for name in sorted(dirnames):
+            link = here / name
+            if name in JUNK_PARTS:
+                dirnames.remove(name)
+            elif link.is_symlink():
+                _check_inside(link, base, folder)
+                dirnames.remove(name)      # never walk through a link, even an inward one
+        for name in sorted(filenames):
+            path = here / name
+            rel_parts = path.relative_to(folder).parts
+            if is_junk(rel_parts):
+                continue
+            if path.is_symlink():
+                _check_inside(path, base, folder)
+            if not path.is_file():
+                raise SubmissionRefused(f"{'/'.join(rel_parts)} is not a regular file")
+            size = path.stat().st_size
+            if len(files) >= limits.max_files:
+                raise SubmissionRefused(f"the folder has more than {limits.max_files} files")
+            if size > limits.max_file_bytes or total + size > limits.max_total_bytes:
+                raise SubmissionRefused(f"{'/'.join(rel_parts)} is {size} bytes; the limits are "
+                                        f"{limits.max_file_bytes} per file and "
+                                        f"{limits.max_total_bytes} in all")
+            data = path.read_bytes()
+            total += len(data)
+            files["/".join(rel_parts)] = data
+    return files
+
+
+def _check_inside(link: Path, base: Path, folder: Path) -> None:
+    target = link.resolve()
+    if target != base and base not in target.parents:
+        raise SubmissionRefused(f"{link.relative_to(folder)} is a link to something outside the submission; "
+                                f"links are not followed")
+
+
+def find_root(files: dict[str, bytes]) -> tuple[str, dict[str, bytes]]:
+    """The folder holding the student's files, and the files re-rooted there.
+
+    A single top-level folder (``alice.zip`` containing ``week3/...``) is stepped into; failing that, the
+    shallowest folder with the most course files (``simiam/assignments/week3/``) is chosen.
+    """
+    root = ""
+    while files and not any("/" not in p for p in files):
+        tops = {p.split("/", 1)[0] for p in files}
+        if len(tops) != 1:
+            break
+        top = tops.pop()
+        root = f"{root}{top}/"
+        files = {p.split("/", 1)[1]: data for p, data in files.items()}
+    if any(p in STUDENT_FILES for p in files):
+        return root.rstrip("/"), files
+    score: dict[str, int] = {}
+    for p in files:
+        folder, _, name = p.rpartition("/")
+        if name in STUDENT_FILES:
+            score[folder] = score.get(folder, 0) + 1
+    if not score:
+        return root.rstrip("/"), files
+    best = max(score, key=lambda f: (score[f], -f.count("/"), f))
+    prefix = best + "/"
+    return f"{root}{best}", {p[len(prefix):]: d for p, d in files.items() if p.startswith(prefix)}
+
+
+def content_hash(files: dict[str, bytes]) -> str:
+    """SHA-256 of the files' names and bytes, independent of order, timestamps and zip packaging."""
+    digest = hashlib.sha256()
+    for rel in sorted(files):
+        digest.update(rel.encode() + b"\x00" + hashlib.sha256(files[rel]).digest())
+    return digest.hexdigest()
+
+
+def _hash_path(path: Path) -> str:
+    """Hash of what is on disk for a refused submission (so fixing the zip triggers a regrade)."""
+    digest = hashlib.sha256(path.name.encode())
+    try:
+        if path.is_file():
+            with path.open("rb") as stream:
+                while chunk := stream.read(1 << 20):
+                    digest.update(chunk)
+        else:
+            for p in sorted(path.rglob("*")):
+                digest.update(str(p.relative_to(path)).encode())
+                if p.is_file() and not p.is_symlink():
+                    digest.update(str(p.stat().st_size).encode())
+    except OSError:
+        pass
+    return digest.hexdigest()
+
+
+def pack(files: dict[str, bytes]) -> dict[str, str]:
+    """Files as JSON-safe base64 text, to send to a grading process (local or on another machine)."""
+    return {rel: base64.b64encode(data).decode("ascii") for rel, data in files.items()}
+
+
+def unpack(packed: dict[str, str], into: Path) -> Path:
+    """Write packed files under ``into`` (names were checked when read) and return ``into``."""
+    for rel, text in packed.items():
+        target = into.joinpath(*rel.split("/"))
+        if into.resolve() not in target.resolve().parents:   # defence in depth; read_* already refused
+            raise SubmissionRefused(f"{rel} would land outside the submission folder")
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_bytes(base64.b64decode(text))
+    return into

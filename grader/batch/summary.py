@@ -1,0 +1,136 @@
+"""``summary.html``: the class at a glance, for the instructor.
+
+Per-check pass rates and mean points, the score distribution as an inline SVG histogram, and a table of
+students linking to each report. Self-contained (no scripts, no external files), built from the
+per-student results only.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from jinja2 import Environment
+
+from grader.batch.exports import check_ids, class_max_score
+from grader.batch.store import write_atomic
+
+BINS = 10
+
+
+def check_stats(results: dict[str, dict]) -> list[dict]:
+    """For each check: how many graded students ran it, the pass rate and the mean points."""
+    stats = []
+    for cid in check_ids(results):
+        runs = [c for r in results.values() if r.get("status") == "graded"
+                for c in r.get("checks") or [] if isinstance(c, dict) and c.get("id") == cid]
+        if not runs:
+            continue
+        points = [float(c.get("points") or 0.0) for c in runs]
+        passed = sum(c.get("status") == "passed" for c in runs)
+        stats.append({"id": cid, "name": runs[0].get("name") or cid, "kind": runs[0].get("kind") or "",
+                      "max_points": float(runs[0].get("max_points") or 0.0), "n": len(runs),
+                      "pass_rate": passed / len(runs), "mean_points": sum(points) / len(points),
+                      "errors": sum(c.get("status") in ("error", "timeout") for c in runs)})
+    return stats
+
+
+def score_histogram(results: dict[str, dict], bins: int = BINS) -> list[int]:
+    """Graded students per score band: ``bins`` equal bands of the percentage, 100 % in the top one."""
+    counts = [0] * bins
+    for result in results.values():
+        score, top = result.get("score"), result.get("max_score")
+        if result.get("status") != "graded" or not isinstance(score, (int, float)) or not top:
+            continue
+        fraction = min(max(float(score) / float(top), 0.0), 1.0)
+        counts[min(int(fraction * bins), bins - 1)] += 1
+    return counts
+
+
+def histogram_svg(counts: list[int], width: int = 520, height: int = 200) -> str:
+    """A bar chart of ``counts`` over 0-100 % as inline SVG text (escaped by construction: numbers only)."""
+    left, bottom, top_pad = 36, 28, 12
+    plot_w, plot_h = width - left - 8, height - bottom - top_pad
+    peak = max(counts) or 1
+    bar_w = plot_w / len(counts)
+    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" role="img" '
+             f'aria-label="score distribution">',
+             f'<line x1="{left}" y1="{top_pad + plot_h}" x2="{left + plot_w}" y2="{top_pad + plot_h}" '
+             f'stroke="#444"/>']
+    for i, count in enumerate(counts):
+        h = plot_h * count / peak
+        x = left + i * bar_w
+        parts.append(f'<rect x="{x + 2:.1f}" y="{top_pad + plot_h - h:.1f}" width="{bar_w - 4:.1f}" '
+                     f'height="{h:.1f}" fill="#3b7dd8"><title>{count} students</title></rect>')
+        if count:
+            parts.append(f'<text x="{x + bar_w / 2:.1f}" y="{top_pad + plot_h - h - 2:.1f}" font-size="11" '
+                         f'text-anchor="middle">{count}</text>')
+        parts.append(f'<text x="{x + bar_w / 2:.1f}" y="{height - 10}" font-size="10" text-anchor="middle">'
+                     f'{100 * i // len(counts)}%</text>')
+    parts.append(f'<text x="4" y="{top_pad + 10}" font-size="10">{peak}</text></svg>')
+    return "".join(parts)
+
+
+_TEMPLATE = """<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>Week {{ week }} class summary</title>
+<style>
+body{font-family:system-ui,sans-serif;margin:2em;color:#222}table{border-collapse:collapse;margin:1em 0}
+td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}td.n{text-align:right}
+.bar{display:inline-block;height:10px;background:#3b7dd8}.graded{color:#176b2c}
+.invalid,.crashed,.timeout{color:#a11}
+</style></head><body>
+<h1>Week {{ week }}: class summary</h1>
+<p>{{ results|length }} students:
+{% for s, n in status_counts.items() %}{{ n }} {{ s }}{% if not loop.last %}, {% endif %}{% endfor %}.
+Seed {{ seed }}; grader {{ grader }}; hidden checks {{ "included" if hidden else "not run" }}.
+{% if mean is not none %}Mean score {{ "%.2f"|format(mean) }}
+{%- if max_score %} / {{ "%g"|format(max_score) }}{% endif %}.{% endif %}</p>
+{% if incomplete %}<p><strong>Incomplete:</strong> {{ incomplete }} submissions not graded yet;
+rerun the same command to finish.</p>{% endif %}
+<h2>Score distribution (graded submissions)</h2>
+{{ histogram|safe }}
+<h2>Checks</h2>
+<table><tr><th>check</th><th>name</th><th>kind</th><th>max</th><th>pass rate</th><th>mean points</th>
+<th>errors</th></tr>
+{% for c in checks %}<tr><td><code>{{ c.id }}</code></td><td>{{ c.name }}</td><td>{{ c.kind }}</td>
+<td class="n">{{ "%g"|format(c.max_points) }}</td>
+<td><span class="bar" style="width:{{ (c.pass_rate * 80)|round|int }}px"></span>
+{{ (c.pass_rate * 100)|round|int }}%</td>
+<td class="n">{{ "%.2f"|format(c.mean_points) }}</td><td class="n">{{ c.errors }}</td></tr>
+{% endfor %}</table>
+<h2>Students</h2>
+<table><tr><th>student</th><th>status</th><th>score</th><th>message</th></tr>
+{% for s in students %}<tr><td><a href="{{ s.href }}">{{ s.id }}</a></td>
+<td class="{{ s.status }}">{{ s.status }}</td>
+<td class="n">{% if s.score is not none %}{{ "%g"|format(s.score) }}
+{%- if max_score %} / {{ "%g"|format(max_score) }}{% endif %}{% endif %}</td>
+<td>{{ s.message }}</td></tr>
+{% endfor %}</table>
+</body></html>
+"""
+
+_env = Environment(autoescape=True)
+
+
+def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) -> str:
+    """The page's HTML; ``meta`` gives week, seed, hidden, grader and ``incomplete`` (students not done)."""
+    max_score = class_max_score(results)
+    graded = [float(r["score"]) for r in results.values()
+              if r.get("status") == "graded" and isinstance(r.get("score"), (int, float))]
+    status_counts: dict[str, int] = {}
+    for result in results.values():
+        status_counts[str(result.get("status"))] = status_counts.get(str(result.get("status")), 0) + 1
+    students = [{"id": sid, "href": f"{stems[sid]}.html", "status": r.get("status"),
+                 "score": r.get("score") if isinstance(r.get("score"), (int, float)) else None,
+                 "message": " ".join(str(r.get("message") or "").split())[:300]}
+                for sid, r in sorted(results.items())]
+    return _env.from_string(_TEMPLATE).render(
+        week=meta.get("week"), seed=meta.get("seed"), hidden=meta.get("hidden"), grader=meta.get("grader"),
+        incomplete=meta.get("incomplete", 0), results=results,
+        status_counts=dict(sorted(status_counts.items())),
+        mean=sum(graded) / len(graded) if graded else None, max_score=max_score,
+        histogram=histogram_svg(score_histogram(results)), checks=check_stats(results), students=students)
+
+
+def write_summary(out: Path, results: dict[str, dict], stems: dict[str, str], meta: dict) -> None:
+    """Write ``out/summary.html``."""
+    write_atomic(out / "summary.html", summary_html(results, stems, meta))

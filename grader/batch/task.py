@@ -1,0 +1,56 @@
+"""The grading function a batch runs in each grading process: one task in, one outcome out.
+
+A task is a plain dict, the same for the local pool and for Dask workers on other machines::
+
+    {"student": "alice", "display": "alice.zip", "week": 3, "seed": 1234, "hidden": true,
+     "sandbox": "auto", "grader": "<fingerprint>", "files": {"go_to_goal.py": "<base64>", ...}}
+
+The submission travels as its bytes (hashed by the runner), so a remote worker needs no shared disk and
+grades exactly what was hashed. The outcome is ``{"result": <result JSON>, "html": <report> | None}``.
+"""
+
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+
+from grader.batch.cache import grader_fingerprint
+from grader.batch.submissions import unpack
+
+
+class GraderMismatch(RuntimeError):
+    """The grading process runs different grader code than the batch runner (a stale Dask worker)."""
+
+
+def grade_task(task: dict) -> dict:
+    """Grade one submission with :func:`grader.grading.grade_submission` (the seam every front door uses)."""
+    from grader.grading import grade_submission  # imported here so the batch plumbing loads without it
+
+    expected = task.get("grader")
+    if expected and expected != grader_fingerprint():
+        raise GraderMismatch(f"this grading machine runs grader {grader_fingerprint()}, the batch expects "
+                             f"{expected}; install the same version everywhere")
+    week = int(task["week"])
+    with tempfile.TemporaryDirectory(prefix="simiam-batch-") as tmp:
+        submission = unpack(task["files"], Path(tmp) / "submission")
+        report_dir = Path(tmp) / "report"
+        result = grade_submission(week=week, submission=submission, seed=int(task["seed"]),
+                                  hidden=bool(task["hidden"]), out_dir=report_dir,
+                                  sandbox=task.get("sandbox", "auto"))
+        html_path = report_dir / f"week{week}.html"
+        html = html_path.read_text(encoding="utf-8") if html_path.is_file() else None
+        # The temporary path differs on every run and machine; the student's own name does not.
+        display = task.get("display") or task["student"]
+        return {"result": replace_text(result, str(submission), display),
+                "html": html.replace(str(submission), display) if html is not None else None}
+
+
+def replace_text(value: object, old: str, new: str) -> object:
+    """``value`` with ``old`` replaced by ``new`` in every string inside it (keys included)."""
+    if isinstance(value, str):
+        return value.replace(old, new)
+    if isinstance(value, list):
+        return [replace_text(v, old, new) for v in value]
+    if isinstance(value, dict):
+        return {replace_text(k, old, new): replace_text(v, old, new) for k, v in value.items()}
+    return value
