@@ -93,7 +93,7 @@ WEEKS: dict[int, WeekConfig] = {
             ),
             "qb_supervisor.py": _SUPERVISOR + ("QBSupervisor.ensure_w",),
         },
-        default_settings={"v": 0.2, "goal": (-1.0, 1.0), "d_stop": 0.05, "state": "avoid_obstacles"},
+        default_settings={"v": 0.15, "goal": (-1.0, 1.0), "d_stop": 0.05, "state": "avoid_obstacles"},
         seconds=60.0,
     ),
 }
