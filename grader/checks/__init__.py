@@ -1,0 +1,129 @@
+"""The check registry: what a check is, what it gets when it runs, and the checks of each week.
+
+A check has a stable id `weekN.<part>.<name>`, a weight (its max points), a kind (property, scenario,
+static) and a visibility (visible: runs everywhere; hidden: only with `--hidden`, i.e. in official
+grading). Its `run(ctx)` returns an `Outcome` (a fraction of the points, a message, details); anything the
+student's code does wrong on the way is raised as a grader.sandbox error and turned into a clear message by
+`run_check`.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from grader.result import CheckResult
+from grader.sandbox.errors import SandboxError, StudentError, StudentTimeout, WorkerDied
+
+
+class Mismatch(Exception):
+    """A student answer that is wrong, with the plain-words reason ("with v = 0.1 ... expected ...")."""
+
+
+@dataclass
+class Outcome:
+    """What a check found: the fraction of its points earned (0..1), why, and details for the report."""
+
+    fraction: float
+    message: str = ""
+    details: dict[str, Any] = field(default_factory=dict)
+    status: str | None = None  # default: passed when fraction == 1, else failed
+
+
+@dataclass
+class Context:
+    """What a running check may use. `session.call` reaches the student's worker; nothing else does."""
+
+    week: int
+    seed: int
+    session: Any
+    hidden: bool = False
+    case: dict[str, Any] | None = None  # replay one case of a property (`grade --check ID --case ...`)
+    traces: dict[str, dict] = field(default_factory=dict)  # scenario traces by check id (Seam 2)
+    replay_prefix: str = ""  # e.g. "grade week2 path/to/folder"
+    call_seconds: float = 2.0
+    memo: dict[str, Any] = field(default_factory=dict)  # runs shared between checks of one grading
+
+    @property
+    def config(self):
+        from simiam.course.weeks import week_config
+
+        return week_config(self.week)
+
+    @property
+    def spec(self):
+        return self.config.spec
+
+    def probe(self, name: str, **args: Any) -> Any:
+        """Run probe `name` in the student's worker; the untrusted JSON answer."""
+        return self.session.call(
+            "probe", name=name, args={"week": self.week, **args}, timeout=self.call_seconds
+        )
+
+
+@dataclass(frozen=True)
+class Check:
+    """One check of one week. `needs`: the student files it runs (a file that did not load fails it)."""
+
+    id: str
+    name: str
+    kind: str
+    weight: float
+    run: Callable[[Context], Outcome]
+    needs: tuple[str, ...] = ()
+    visibility: str = "visible"
+
+    @property
+    def part(self) -> str:
+        return self.id.split(".")[1]
+
+
+def checks_for_week(week: int) -> list[Check]:
+    """Every check of `week` (visible and hidden), in report order."""
+    module = importlib.import_module(f"grader.checks.week{int(week)}")
+    return list(module.CHECKS)
+
+
+def sandbox_message(exc: SandboxError) -> tuple[str, str]:
+    """(status, message) for a failure of the student's worker during a check."""
+    if isinstance(exc, StudentTimeout):
+        return "timeout", f"your code did not answer in time ({exc.message}); is there an endless loop?"
+    if isinstance(exc, StudentError):
+        return "error", f"your code raised an error: {exc}"
+    if isinstance(exc, WorkerDied):
+        return "error", f"your code stopped the grading worker: {exc.message}"
+    return "error", str(exc)
+
+
+def run_check(check: Check, ctx: Context, load_errors: dict[str, list[str]]) -> CheckResult:
+    """Run one check and turn whatever happens into a CheckResult (never raises for student problems)."""
+    result = CheckResult(
+        id=check.id, name=check.name, kind=check.kind, visibility=check.visibility, max_points=check.weight
+    )
+    broken = [msg for file in check.needs for msg in load_errors.get(file, [])]
+    if broken:
+        result.status = "error"
+        result.message = "this check needs code that did not load: " + "; ".join(broken)
+        return result
+    try:
+        outcome = check.run(ctx)
+    except SandboxError as exc:
+        result.status, result.message = sandbox_message(exc)
+        return result
+    except Mismatch as exc:
+        result.message = str(exc)
+        return result
+    except Exception as exc:  # noqa: BLE001 - a grader bug must not stop the other checks (fail closed)
+        result.status = "error"
+        result.message = (
+            f"the grader could not finish this check (internal error {type(exc).__name__}: {exc})"
+        )
+        return result
+    fraction = min(max(float(outcome.fraction), 0.0), 1.0)
+    result.points = fraction * check.weight
+    result.status = outcome.status or ("passed" if fraction >= 1.0 else "failed")
+    result.message = outcome.message
+    result.details = outcome.details
+    return result

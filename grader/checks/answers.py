@@ -1,0 +1,64 @@
+"""Reading the student's untrusted answers: plain numbers, vectors and matrices, or a Mismatch saying why not.
+
+The worker sends JSON; a NaN or infinity arrives as the string "nan"/"inf" (see grader.probes.plain) and an
+object the worker could not turn into numbers arrives as {"type": name}. Only real ints and floats pass.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from grader.checks import Mismatch
+
+
+def describe(value: Any) -> str:
+    """A short, student-readable description of an answer that is not what was expected."""
+    if isinstance(value, dict) and "type" in value:
+        return f"a {value['type']} object"
+    if isinstance(value, str):
+        return (
+            "NaN" if value.lower() == "nan" else ("infinity" if "inf" in value.lower() else repr(value[:40]))
+        )
+    if value is None:
+        return "None"
+    if isinstance(value, list):
+        return f"a list of {len(value)} values"
+    text = repr(value)
+    return text if len(text) < 60 else text[:57] + "..."
+
+
+def number(value: Any, what: str) -> float:
+    """A finite float, or Mismatch("<what> was NaN, expected a number")."""
+    if type(value) in (int, float) and math.isfinite(value):
+        return float(value)
+    raise Mismatch(f"{what} was {describe(value)}, expected a finite number")
+
+
+def vector(value: Any, n: int, what: str) -> list[float]:
+    """Exactly n finite numbers (a list or tuple of them, or a numpy array turned into a list)."""
+    if not isinstance(value, list) or len(value) != n:
+        raise Mismatch(f"{what} was {describe(value)}, expected {n} numbers")
+    return [number(v, f"{what}[{i}]") for i, v in enumerate(value)]
+
+
+def matrix(value: Any, rows: int, cols: int, what: str) -> list[list[float]]:
+    """A rows x cols matrix of finite numbers (a list of rows)."""
+    if not isinstance(value, list) or len(value) != rows or not all(isinstance(r, list) for r in value):
+        raise Mismatch(f"{what} was {describe(value)}, expected a {rows}x{cols} matrix")
+    out = []
+    for i, row in enumerate(value):
+        if len(row) != cols:
+            raise Mismatch(
+                f"{what} row {i + 1} has {len(row)} values, expected {cols} ({rows}x{cols} matrix)"
+            )
+        out.append([number(v, f"{what}[{i}][{j}]") for j, v in enumerate(row)])
+    return out
+
+
+def fmt(x: float) -> str:
+    """A number as a student reads it: up to 4 significant decimals, no trailing noise."""
+    if x == 0:
+        return "0"
+    text = f"{x:.4g}" if abs(x) < 1e-3 or abs(x) >= 1e4 else f"{x:.4f}".rstrip("0").rstrip(".")
+    return text.replace("-", "\u2212")

@@ -1,0 +1,183 @@
+"""Week 2 odometry checks: the student's update_odometry along trusted tick sequences.
+
+Each step is judged on its own, from the student's previous estimate and the tick differences, so every
+correct odometry passes (the course's formula, the midpoint heading, the exact arc) and one mistake costs
+one check: `heading` (theta changes by (d_r - d_l)/L), `distance` (the estimate moves (d_r + d_l)/2, or the
+arc's chord), `direction` (it moves along a heading between the old and the new one). The paths are
+straight lines, arcs, spins and reversing, driven by the trusted simulator, then random tick sequences.
+`course_test` repeats the course's own test (25 steps of go-to-angle) and reports its relative errors.
+"""
+
+from __future__ import annotations
+
+import math
+from itertools import accumulate
+
+from hypothesis import strategies as st
+
+from grader import reference as ref
+from grader.checks import Check, Context, Mismatch, Outcome
+from grader.checks.answers import fmt, vector
+from grader.properties import run_property
+
+NEEDS = ("qb_supervisor.py",)
+DT = 0.033
+_TOL = 1e-6
+
+_PATHS = {  # name: (wheel speeds in rad/s, steps)
+    "straight": ((6.0, 6.0), 20),
+    "arc to the left": ((8.0, 5.0), 25),
+    "arc to the right": ((4.0, 7.0), 25),
+    "spin to the left": ((-5.0, 5.0), 20),
+    "spin to the right": ((5.0, -5.0), 20),
+    "reversing": ((-6.0, -4.0), 15),
+}
+
+
+def _path_examples(ctx: Context) -> list[dict]:
+    out = []
+    for wheels, n in _PATHS.values():
+        ticks, _ = ref.drive(ctx.spec, [wheels] * n, DT)
+        prev = [(0, 0), *ticks[:-1]]
+        out.append(
+            {
+                "steps": [[r - pr, lt - pl] for (r, lt), (pr, pl) in zip(ticks, prev, strict=False)],
+                "start": [0.0, 0.0, 0.0],
+            }
+        )
+    return out
+
+
+_tick_steps = st.lists(st.tuples(st.integers(-4, 4), st.integers(-4, 4)).map(list), min_size=1, max_size=10)
+_starts = st.tuples(st.floats(-1, 1), st.floats(-1, 1), st.floats(-math.pi, math.pi)).map(list)
+
+
+def _estimates(ctx: Context, steps: list, start: list) -> list[list[float]]:
+    cumulative = [list(t) for t in accumulate(steps, lambda a, b: [a[0] + b[0], a[1] + b[1]])]
+    answer = ctx.probe("odometry", ticks=cumulative, start=start)
+    if not isinstance(answer, list) or len(answer) != len(steps):
+        raise Mismatch("update_odometry did not leave an estimate after every step")
+    return [vector(e, 3, f"after step {k + 1} your state_estimate") for k, e in enumerate(answer)]
+
+
+def _between(angle: float, start: float, sweep: float) -> bool:
+    """True if `angle` lies on the arc from `start` sweeping by `sweep` (either sign), within tolerance."""
+    offset = ref.wrap(angle - start)
+    lo, hi = (0.0, sweep) if sweep >= 0 else (sweep, 0.0)
+    return lo - _TOL <= offset <= hi + _TOL
+
+
+def _judge(aspect: str):
+    def case(ctx: Context, steps: list, start: list) -> None:
+        spec = ctx.spec
+        prev = list(start)
+        for k, (est, (d_right, d_left)) in enumerate(zip(_estimates(ctx, steps, start), steps, strict=False)):
+            d_r, d_l = d_right * ref.m_per_tick(spec), d_left * ref.m_per_tick(spec)
+            d_c, phi = (d_r + d_l) / 2, (d_r - d_l) / spec.wheel_base_length
+            dx, dy, dtheta = est[0] - prev[0], est[1] - prev[1], est[2] - prev[2]
+            moved = math.hypot(dx, dy)
+            where = (
+                f"at step {k + 1} (right wheel {d_right:+d} ticks, left {d_left:+d}) from "
+                f"x = {fmt(prev[0])}, y = {fmt(prev[1])}, theta = {fmt(prev[2])}"
+            )
+            if aspect == "heading" and abs(ref.wrap(dtheta - phi)) > _TOL:
+                raise Mismatch(
+                    f"{where} your theta changed by {fmt(dtheta)}, expected (d_r - d_l)/L = {fmt(phi)}"
+                )
+            if aspect == "distance":
+                chord = abs(d_c) * (math.sin(phi / 2) / (phi / 2) if phi else 1.0)
+                if not chord - _TOL <= moved <= abs(d_c) + _TOL:
+                    raise Mismatch(
+                        f"{where} your estimate moved {fmt(moved)} m, expected (d_r + d_l)/2 = "
+                        f"{fmt(abs(d_c))} m"
+                    )
+            if aspect == "direction" and abs(d_c) > 1e-9:
+                if moved < 0.5 * abs(d_c):
+                    raise Mismatch(f"{where} your estimate did not move (expected {fmt(abs(d_c))} m)")
+                heading = math.atan2(math.copysign(1, d_c) * dy, math.copysign(1, d_c) * dx)
+                if not _between(heading, prev[2], phi):
+                    raise Mismatch(
+                        f"{where} your estimate moved toward {fmt(heading)} rad; the robot faces "
+                        f"{fmt(prev[2])} rad (x changes with cos(theta), y with sin(theta))"
+                    )
+            prev = est
+
+    return case
+
+
+def _property(aspect: str, passed: str):
+    def run(ctx: Context) -> Outcome:
+        return run_property(
+            ctx,
+            f"week2.odometry.{aspect}",
+            {"steps": _tick_steps, "start": _starts},
+            _judge(aspect),
+            examples=_path_examples(ctx),
+            max_examples=20,
+            passed=passed,
+        )
+
+    run.__name__ = f"odometry_{aspect}"
+    return run
+
+
+def course_test(ctx: Context) -> Outcome:
+    """The course's part-2 test: go-to-angle for 25 steps; relative errors of x, y, theta vs the true pose."""
+    spec = ctx.spec
+    ticks, poses = ref.go_to_angle_run(spec, v=0.1, theta_d=math.pi / 4, steps=25, dt=0.05)
+    steps = [[r - pr, lt - pl] for (r, lt), (pr, pl) in zip(ticks, [(0, 0), *ticks[:-1]], strict=False)]
+    est = _estimates(ctx, steps, [0.0, 0.0, 0.0])[-1]
+    reference = [0.0, 0.0, 0.0]
+    for d_r, d_l in steps:
+        reference = list(ref.odometry_step(spec, reference, d_r, d_l))
+    true = poses[-1]
+    errors = [abs((t - e) / t) for t, e in zip(true, est, strict=False)]
+    allowed = [abs((t - e) / t) + 0.02 for t, e in zip(true, reference, strict=False)]
+    details = {"relative_errors": errors, "allowed": allowed, "true_pose": list(true), "estimate": est}
+    names = ("x", "y", "theta")
+    text = ", ".join(f"{n} {e:.3f}" for n, e in zip(names, errors, strict=False))
+    for name, err, limit in zip(names, errors, allowed, strict=False):
+        if err > limit:
+            return Outcome(
+                0.0,
+                f"after 25 steps of go-to-angle (v = 0.1, theta_d = pi/4) the relative errors "
+                f"were {text}; {name} may be off by at most {limit:.3f}",
+                details,
+            )
+    return Outcome(1.0, f"relative errors after 25 steps: {text} (the course's test)", details)
+
+
+ODOMETRY_CHECKS = [
+    Check(
+        "week2.odometry.heading",
+        "odometry: theta changes by (d_r - d_l)/L",
+        "property",
+        1.0,
+        _property("heading", "theta follows the wheels"),
+        NEEDS,
+    ),
+    Check(
+        "week2.odometry.distance",
+        "odometry: the estimate moves (d_r + d_l)/2",
+        "property",
+        1.0,
+        _property("distance", "the estimate moves as far as the robot"),
+        NEEDS,
+    ),
+    Check(
+        "week2.odometry.direction",
+        "odometry: the estimate moves along the heading",
+        "property",
+        1.0,
+        _property("direction", "the estimate moves along theta"),
+        NEEDS,
+    ),
+    Check(
+        "week2.odometry.course_test",
+        "odometry: the course's 25-step test",
+        "property",
+        0.5,
+        course_test,
+        NEEDS,
+    ),
+]

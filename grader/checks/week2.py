@@ -1,0 +1,217 @@
+"""Week 2 checks: uni_to_diff, odometry, IR conversion (week-2 divider), go-to-angle.
+
+Each property compares the student's answers with trusted maths (grader.reference); the go-to-angle
+scenario runs the student's supervisor in the trusted simulator and judges the true heading.
+"""
+
+from __future__ import annotations
+
+import math
+
+from hypothesis import strategies as st
+
+from grader import reference as ref
+from grader.checks import Check, Context, Mismatch, Outcome
+from grader.checks.answers import fmt, vector
+from grader.checks.odometry import ODOMETRY_CHECKS
+from grader.properties import run_property
+from grader.scenarios import go_to_angle_check
+
+DRIVE = ("differential_drive.py",)
+IR = ("quickbot.py",)
+
+speeds = st.floats(-0.3, 0.3, allow_nan=False)
+turns = st.floats(-5.0, 5.0, allow_nan=False)
+
+
+def _wheels(ctx: Context, v: float, w: float) -> tuple[float, float]:
+    answer = ctx.probe("uni_to_diff", v=v, w=w)
+    vel_r, vel_l = vector(answer, 2, f"with v = {fmt(v)}, w = {fmt(w)} your uni_to_diff returned")
+    return vel_r, vel_l
+
+
+def _close(a: float, b: float, scale: float = 1.0) -> bool:
+    return abs(a - b) <= 1e-6 * max(1.0, abs(b), scale)
+
+
+def round_trip(ctx: Context) -> Outcome:
+    def case(ctx: Context, v: float, w: float) -> None:
+        vel_r, vel_l = _wheels(ctx, v, w)
+        exp_r, exp_l = ref.uni_to_diff(ctx.spec, v, w)
+        if not (_close(vel_r, exp_r) and _close(vel_l, exp_l)):
+            got_v, got_w = ref.diff_to_uni(ctx.spec, vel_r, vel_l)
+            raise Mismatch(
+                f"with v = {fmt(v)}, w = {fmt(w)} your vel_r was {fmt(vel_r)} and vel_l {fmt(vel_l)}, "
+                f"expected {fmt(exp_r)} and {fmt(exp_l)}: these wheels drive the robot at v = {fmt(got_v)}, "
+                f"w = {fmt(got_w)} (check which wheel is which, and L/2 vs L)"
+            )
+
+    return run_property(
+        ctx,
+        "week2.uni_to_diff.round_trip",
+        {"v": speeds, "w": turns},
+        case,
+        examples=[{"v": 0.1, "w": 0.5}, {"v": 0.0, "w": 1.0}],
+        passed="diff_to_uni(uni_to_diff(v, w)) gives back (v, w)",
+    )
+
+
+def straight(ctx: Context) -> Outcome:
+    def case(ctx: Context, v: float) -> None:
+        vel_r, vel_l = _wheels(ctx, v, 0.0)
+        if not _close(vel_r, vel_l) or not _close(vel_r, v / ctx.spec.wheel_radius):
+            raise Mismatch(
+                f"with v = {fmt(v)}, w = 0 your wheels were {fmt(vel_r)} and {fmt(vel_l)}; driving "
+                f"straight needs both at v/R = {fmt(v / ctx.spec.wheel_radius)} rad/s"
+            )
+
+    return run_property(
+        ctx,
+        "week2.uni_to_diff.straight",
+        {"v": speeds.filter(lambda v: abs(v) > 1e-3)},
+        case,
+        examples=[{"v": 0.1}],
+        passed="w = 0 gives equal wheels",
+    )
+
+
+def spin(ctx: Context) -> Outcome:
+    def case(ctx: Context, w: float) -> None:
+        vel_r, vel_l = _wheels(ctx, 0.0, w)
+        if not _close(vel_r, -vel_l) or abs(vel_r) < 1e-9:
+            raise Mismatch(
+                f"with v = 0, w = {fmt(w)} your wheels were {fmt(vel_r)} and {fmt(vel_l)}; turning "
+                "on the spot needs opposite, non-zero wheel speeds"
+            )
+
+    return run_property(
+        ctx,
+        "week2.uni_to_diff.spin",
+        {"w": turns.filter(lambda w: abs(w) > 1e-2)},
+        case,
+        examples=[{"w": 1.0}],
+        passed="v = 0 gives opposite wheels",
+    )
+
+
+def linearity(ctx: Context) -> Outcome:
+    def case(ctx: Context, v: float, w: float) -> None:
+        unit_v = _wheels(ctx, 1.0, 0.0)
+        unit_w = _wheels(ctx, 0.0, 1.0)
+        if max(map(abs, unit_v)) < 1e-9 or max(map(abs, unit_w)) < 1e-9:
+            raise Mismatch(
+                "your uni_to_diff returns zero wheel speeds for v = 1 or for w = 1: is it filled in?"
+            )
+        got = _wheels(ctx, v, w)
+        for i, side in enumerate(("vel_r", "vel_l")):
+            expected = v * unit_v[i] + w * unit_w[i]
+            if not _close(got[i], expected, 10.0):
+                raise Mismatch(
+                    f"with v = {fmt(v)}, w = {fmt(w)} your {side} was {fmt(got[i])}, but v times your "
+                    f"answer for (1, 0) plus w times your answer for (0, 1) is {fmt(expected)}: "
+                    "uni_to_diff must be linear in v and w"
+                )
+
+    return run_property(
+        ctx,
+        "week2.uni_to_diff.linearity",
+        {"v": speeds, "w": turns},
+        case,
+        passed="uni_to_diff is linear in v and w",
+    )
+
+
+def _distances(ctx: Context, raw: list[int]) -> list[float]:
+    return vector(
+        ctx.probe("ir_distances", raw=raw), 5, f"with raw values {raw} your get_ir_distances returned"
+    )
+
+
+def ir_table(ctx: Context) -> Outcome:
+    """The manual's table (Figure 2b), read through this week's divider, within 5 % or 3 mm."""
+    divider = ref.ir_divider(ctx.spec)
+    rows = list(ref.IR_TABLE)
+    worst = 0.0
+    for start in range(0, len(rows), 5):
+        chunk = rows[start : start + 5]
+        chunk += [rows[-1]] * (5 - len(chunk))
+        raw = [int(math.floor(divider * v + 0.5)) for _, v in chunk]
+        for (d, v), r, got in zip(chunk, raw, _distances(ctx, raw), strict=False):
+            err = abs(got - d)
+            worst = max(worst, err / d)
+            if err > max(0.05 * d, 0.003):
+                raise Mismatch(
+                    f"for raw value {r} (the table's {fmt(v)} V at {fmt(d)} m) your distance was "
+                    f"{fmt(got)} m, expected about {fmt(d)} m (divide by {fmt(divider)} to get volts)"
+                )
+    return Outcome(1.0, f"every table row within 5 % (worst {worst:.1%})", {"worst_relative_error": worst})
+
+
+def ir_simulator(ctx: Context) -> Outcome:
+    """The simulator's own readings at distances 4..30 cm (and some drawn from the seed), within 8 %."""
+    import random
+
+    rng = random.Random(ctx.seed)
+    distances = [0.04 + 0.005 * i for i in range(53)] + [rng.uniform(0.04, 0.3) for _ in range(7)]
+    worst, at = 0.0, None
+    for start in range(0, len(distances), 5):
+        chunk = distances[start : start + 5]
+        raw = [ref.ir_raw(ctx.spec, d) for d in chunk]
+        for d, r, got in zip(chunk, raw, _distances(ctx, raw), strict=False):
+            rel = abs(got - d) / d
+            if rel > worst:
+                worst, at = rel, (d, r, got)
+            if rel > 0.08:
+                raise Mismatch(
+                    f"an obstacle {fmt(d)} m away reads {r}; your distance was {fmt(got)} m, "
+                    f"{rel:.0%} off (at most 8 % expected)"
+                )
+    return Outcome(
+        1.0,
+        f"{len(distances)} readings within 8 % (worst {worst:.1%})",
+        {"worst_relative_error": worst, "worst_at": at},
+    )
+
+
+CHECKS = [
+    Check(
+        "week2.uni_to_diff.round_trip",
+        "uni_to_diff: the wheels drive the robot at (v, w)",
+        "property",
+        1.5,
+        round_trip,
+        DRIVE,
+    ),
+    Check(
+        "week2.uni_to_diff.straight", "uni_to_diff: w = 0 drives straight", "property", 0.5, straight, DRIVE
+    ),
+    Check("week2.uni_to_diff.spin", "uni_to_diff: v = 0 turns on the spot", "property", 0.5, spin, DRIVE),
+    Check("week2.uni_to_diff.linearity", "uni_to_diff: linear in v and w", "property", 0.5, linearity, DRIVE),
+    *ODOMETRY_CHECKS,
+    Check("week2.ir.table", "IR: the manual's table (week-2 divider)", "property", 1.0, ir_table, IR),
+    Check(
+        "week2.ir.simulator",
+        "IR: the simulator's readings from 4 to 30 cm",
+        "property",
+        1.0,
+        ir_simulator,
+        IR,
+    ),
+    Check(
+        "week2.go_to_angle.reaches_theta_d",
+        "go-to-angle reaches theta_d",
+        "scenario",
+        1.5,
+        go_to_angle_check(hidden=False),
+        ("differential_drive.py", "quickbot.py", "go_to_angle.py", "qb_supervisor.py"),
+    ),
+    Check(
+        "week2.go_to_angle.other_angles",
+        "go-to-angle reaches angles drawn per seed",
+        "scenario",
+        1.0,
+        go_to_angle_check(hidden=True),
+        ("differential_drive.py", "quickbot.py", "go_to_angle.py", "qb_supervisor.py"),
+        visibility="hidden",
+    ),
+]

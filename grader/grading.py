@@ -1,0 +1,231 @@
+"""grade_submission: the one grading engine behind `grade weekN`, `grade --batch` and the Dask executor.
+
+    result = grade_submission(week=3, submission=Path("assignments/week3"), seed=2014, hidden=False,
+                              out_dir=Path("reports"), sandbox="auto")
+
+It splices the submission's START/END blocks into pristine stubs, starts one sandboxed worker on the
+spliced copy, runs the week's checks against it and returns the contract's result JSON (a plain dict).
+It never raises for a bad submission: a file that does not load fails the checks that need it, with the
+file, line and reason; the status is `invalid` only when nothing at all could be loaded.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+from grader.checks import Check, Context, checks_for_week, run_check
+from grader.result import CheckResult, submission_result
+from grader.sandbox.errors import SandboxError
+from grader.sandbox.limits import Limits
+from grader.sandbox.session import StudentSession
+
+DEFAULT_SEED = 2014
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def select_checks(week: int, hidden: bool, only: str | None = None) -> tuple[list[Check], list[Check]]:
+    """(checks to run, hidden checks left out). `only` picks one check id (the CLI's --check)."""
+    checks = checks_for_week(week)
+    if only is not None:
+        picked = [c for c in checks if c.id == only]
+        if not picked:
+            raise ValueError(
+                f"week {week} has no check {only!r}; its checks are: " + ", ".join(c.id for c in checks)
+            )
+        return picked, []
+    run = [c for c in checks if hidden or c.visibility == "visible"]
+    return run, [c for c in checks if c not in run]
+
+
+@functools.lru_cache(maxsize=1)
+def _generated_stubs() -> dict[str, str]:
+    from simiam.course.stubs import generate
+
+    return generate(ROOT / "solutions").files
+
+
+def pristine_stubs(week: int, into: Path) -> Path:
+    """The week's untouched stubs: regenerated from solutions/ where the grader has them (so a student's
+    edited assignments/weekN is never mistaken for the stub), else the shipped assignments/weekN."""
+    folder = into / "stubs"
+    folder.mkdir(parents=True, exist_ok=True)
+    prefix = f"assignments/week{week}/"
+    files = {}
+    if (ROOT / "solutions" / f"week{week}").is_dir():
+        files = {k[len(prefix) :]: v for k, v in _generated_stubs().items() if k.startswith(prefix)}
+    if not files:
+        files = {
+            p.name: p.read_text(encoding="utf-8") for p in (ROOT / "assignments" / f"week{week}").glob("*.py")
+        }
+    for name, text in files.items():
+        (folder / name).write_text(text, encoding="utf-8")
+    return folder
+
+
+def _splice(week: int, submission: Path, tmp: Path) -> tuple[Path, dict[str, list[str]], list[str]]:
+    """Splice into pristine stubs: (spliced folder, problems by file, notices)."""
+    from simiam.course.splice import splice_folder
+
+    spliced = tmp / f"week{week}"
+    report = splice_folder(pristine_stubs(week, tmp), submission, spliced)
+    problems: dict[str, list[str]] = {}
+    notices: list[str] = []
+    for name, res in report.files.items():
+        if res.missing:
+            problems.setdefault(name, []).append(f"{name} is missing from your submission")
+        problems.setdefault(name, []).extend(f"{e} (the stub's code was used instead)" for e in res.errors)
+        notices.extend(f"{edit} (edits outside the code blocks are not run)" for edit in res.outside_edits)
+        if not problems[name]:
+            del problems[name]
+    notices.extend(f"{name}: not part of the assignment (ignored)" for name in report.extra_files)
+    return spliced, problems, notices
+
+
+def _load_problems(week: int, loaded: dict) -> dict[str, list[str]]:
+    """Problems by student file from the worker's load report (untrusted: only strings are kept)."""
+    from simiam.course.weeks import week_config
+
+    modules = loaded.get("modules", {})
+    errors = []
+    for e in loaded.get("errors", []):
+        file = e.get("file") if isinstance(e.get("file"), str) else ""
+        line = e.get("line") if type(e.get("line")) is int else None
+        message = e.get("message") if isinstance(e.get("message"), str) else "could not be loaded"
+        errors.append((file, f"{file}:{line}: {message}" if line else f"{file}: {message}".lstrip(": ")))
+    problems: dict[str, list[str]] = {}
+    for file in week_config(week).student_files:
+        own = [text for f, text in errors if f == file]
+        if own:
+            problems[file] = own
+        elif file.removesuffix(".py") not in modules:
+            others = "; ".join(text for _, text in errors) or "it did not import"
+            problems[file] = [f"{file} could not be imported ({others})"]
+    return problems
+
+
+def grade_submission(
+    week: int,
+    submission: Path | str,
+    seed: int = DEFAULT_SEED,
+    hidden: bool = False,
+    out_dir: Path | str | None = None,
+    sandbox: str = "auto",
+    *,
+    only: str | None = None,
+    case: dict[str, Any] | None = None,
+    limits: Limits | None = None,
+    replay_prefix: str | None = None,
+    traces: dict[str, dict] | None = None,
+) -> dict:
+    """Grade one submission folder for course week `week` and return the result JSON (see the module doc).
+
+    `hidden` also runs the hidden checks (official grading). `only`/`case` run one check, or one case of a
+    property (the replay line a failing property prints). Scenario traces go into `traces` (by check id)
+    when a dict is given, and into the HTML report when `out_dir` is given.
+    """
+    week = int(week)
+    submission = Path(submission)
+    selected, left_out = select_checks(week, hidden, only)
+    traces = {} if traces is None else traces
+    began = time.monotonic()
+    extra: dict[str, Any] = {
+        "hidden": hidden,
+        "hidden_checks_not_run": len(left_out),
+        "visible_checks": sum(c.visibility == "visible" for c in selected),
+    }
+    if not submission.is_dir():
+        result = _invalid(week, seed, submission, selected, f"no such folder: {submission}", extra)
+        return _finish(result, traces, out_dir)
+    with tempfile.TemporaryDirectory(prefix="simiam-grade-") as tmp:
+        spliced, problems, notices = _splice(week, submission, Path(tmp))
+        extra["notices"] = notices
+        session = StudentSession(week, spliced, limits, sandbox=sandbox)
+        try:
+            try:
+                loaded = session.load()
+            except SandboxError as exc:
+                extra["isolation"] = session.isolation
+                message = f"your code could not be loaded at all: {exc.message}"
+                return _finish(_invalid(week, seed, submission, selected, message, extra), traces, out_dir)
+            for file, texts in _load_problems(week, loaded).items():
+                problems.setdefault(file, []).extend(texts)
+            extra["isolation"] = session.isolation
+            extra["isolation_note"] = session.isolation_note
+            if not loaded.get("modules"):
+                message = "none of your files could be loaded: " + "; ".join(
+                    t for v in problems.values() for t in v
+                )
+                return _finish(_invalid(week, seed, submission, selected, message, extra), traces, out_dir)
+            prefix = replay_prefix if replay_prefix is not None else f"grade week{week} {submission}"
+            ctx = Context(
+                week=week,
+                seed=seed,
+                session=session,
+                hidden=hidden,
+                case=case,
+                traces=traces,
+                replay_prefix=prefix + (" --hidden" if hidden else "") + f" --seed {seed}",
+            )
+            results: list[CheckResult] = []
+            timing = {}
+            for check in selected:
+                t0 = time.monotonic()
+                results.append(run_check(check, ctx, problems))
+                timing[check.id] = round(time.monotonic() - t0, 3)
+            extra["problems"] = problems
+            extra["student_output"] = session.output()[-4000:]
+            extra["timing"] = {"total_seconds": round(time.monotonic() - began, 3), "checks": timing}
+        finally:
+            session.close()
+    result = submission_result(
+        week=week,
+        seed=seed,
+        submission=str(submission),
+        checks=checks_for_week(week),
+        results=results,
+        extra=extra,
+    )
+    return _finish(result, traces, out_dir)
+
+
+def _invalid(
+    week: int, seed: int, submission: Path, selected: list[Check], message: str, extra: dict[str, Any]
+) -> dict:
+    results = [
+        CheckResult(c.id, c.name, c.kind, c.visibility, c.weight, status="error", message=message)
+        for c in selected
+    ]
+    return submission_result(
+        week=week,
+        seed=seed,
+        submission=str(submission),
+        checks=checks_for_week(week),
+        results=results,
+        status="invalid",
+        message=message,
+        extra=extra,
+    )
+
+
+def _finish(result: dict, traces: dict[str, dict], out_dir: Path | str | None) -> dict:
+    if out_dir is not None:
+        write_outputs(result, traces, Path(out_dir))
+    return result
+
+
+def write_outputs(result: dict, traces: dict[str, dict], out_dir: Path) -> tuple[Path, Path | None]:
+    """Write weekN.json and (when the report package is present) weekN.html into out_dir."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    week = result["week"]
+    json_path = out_dir / f"week{week}.json"
+    json_path.write_text(json.dumps(result, indent=1), encoding="utf-8")
+    try:
+        from grader.report.html import write_report
+    except ImportError:
+        return json_path, None
+    return json_path, write_report(result, traces, out_dir / f"week{week}.html")

@@ -1,0 +1,160 @@
+"""Property checks with Hypothesis: seeded search, shrunk counterexamples in plain words, one-line replay.
+
+Hypothesis runs here, in the grading process; each example is one probe into the student's worker. The
+search is seeded from the grading seed and the check id (no example database), so a regrade with the same
+seed tries the same inputs. A failing property reports its smallest failing case in the words of the
+check ("with v = 0.1, w = -2 your vel_r was 1.54, expected 4.13") and the command that replays exactly
+that case: `grade week2 --check week2.uni_to_diff.round_trip --case 'v=0.1,w=-2.0'`.
+"""
+
+from __future__ import annotations
+
+import json
+import zlib
+from collections.abc import Callable, Iterable
+from typing import Any
+
+from hypothesis import HealthCheck, Phase, Verbosity, given, seed, settings
+from hypothesis import strategies as st
+from hypothesis.errors import HypothesisException
+from hypothesis.reporting import with_reporter
+
+from grader.checks import Context, Mismatch, Outcome
+from grader.sandbox.errors import SandboxError, StudentError
+
+Case = Callable[..., None]  # case(ctx, **inputs) -> None, raises Mismatch when the answer is wrong
+
+
+def format_case(inputs: dict[str, Any]) -> str:
+    """`v=0.1,w=-2.0`: exact values, parseable by `parse_case`."""
+    return ",".join(f"{k}={json.dumps(v, separators=(',', ':'))}" for k, v in inputs.items())
+
+
+def parse_case(text: str) -> dict[str, Any]:
+    """Parse `v=0.1,w=-2.0` or `ticks=[[1,2],[3,4]]` into a dict; ValueError with the reason."""
+    parts, depth, start = [], 0, 0
+    for i, ch in enumerate(text):
+        depth += ch in "[{"
+        depth -= ch in "]}"
+        if ch == "," and depth == 0:
+            parts.append(text[start:i])
+            start = i + 1
+    parts.append(text[start:])
+    out: dict[str, Any] = {}
+    for part in filter(None, (p.strip() for p in parts)):
+        key, sep, value = part.partition("=")
+        if not sep or not key.strip():
+            raise ValueError(f"--case: {part!r} is not name=value")
+        try:
+            out[key.strip()] = json.loads(value.replace("\u2212", "-"))
+        except json.JSONDecodeError:
+            raise ValueError(
+                f"--case: the value of {key.strip()!r} is not a number or list: {value!r}"
+            ) from None
+    return out
+
+
+def _replay(ctx: Context, check_id: str, inputs: dict[str, Any]) -> str:
+    return f"{ctx.replay_prefix} --check {check_id} --case '{format_case(inputs)}'".strip()
+
+
+def _sandbox_words(exc: SandboxError, inputs: dict[str, Any]) -> str:
+    where = ", ".join(f"{k} = {v}" for k, v in inputs.items())
+    return f"with {where} your code raised an error: {exc}" if isinstance(exc, StudentError) else str(exc)
+
+
+def run_property(
+    ctx: Context,
+    check_id: str,
+    strategies: dict[str, st.SearchStrategy],
+    case: Case,
+    *,
+    examples: Iterable[dict[str, Any]] = (),
+    max_examples: int = 25,
+    passed: str = "holds for every case tried",
+) -> Outcome:
+    """Check `case` on fixed `examples`, then on Hypothesis inputs; all-or-nothing.
+
+    With `ctx.case` set (a replay), only that case runs. Student exceptions on an input count as a
+    failing case (and are shrunk like any other); a timeout or a dead worker stops the search at once.
+    """
+    if ctx.case is not None:
+        unknown = set(ctx.case) - set(strategies)
+        missing = set(strategies) - set(ctx.case)
+        if unknown or missing:
+            return Outcome(
+                0.0,
+                f"--case for {check_id} takes {', '.join(strategies)}"
+                f" (got {', '.join(ctx.case) or 'nothing'})",
+                status="error",
+            )
+        return _one(ctx, check_id, case, dict(ctx.case), replayed=True)
+    for inputs in examples:
+        found = _one(ctx, check_id, case, dict(inputs))
+        if found.fraction < 1.0:
+            return found
+
+    state: dict[str, Any] = {"last": None, "fatal": None, "tried": 0}
+
+    def test(**inputs: Any) -> None:
+        if state["fatal"] is not None:
+            raise Mismatch(str(state["fatal"]))
+        state["tried"] += 1
+        try:
+            case(ctx, **inputs)
+        except Mismatch:
+            state["last"] = inputs
+            raise
+        except StudentError as exc:
+            state["last"] = inputs
+            raise Mismatch(_sandbox_words(exc, inputs)) from None
+        except SandboxError as exc:  # timeout, dead worker: stop trying, keep the reason
+            state["fatal"] = exc
+            state["last"] = inputs
+            raise Mismatch(str(exc)) from None
+
+    runner = settings(
+        max_examples=max_examples,
+        deadline=None,
+        database=None,
+        derandomize=False,
+        suppress_health_check=list(HealthCheck),
+        report_multiple_bugs=False,
+        print_blob=False,
+        verbosity=Verbosity.quiet,
+        phases=(Phase.explicit, Phase.generate, Phase.shrink),
+    )(seed(zlib.crc32(f"{ctx.seed}:{check_id}".encode()))(given(**strategies)(test)))
+    try:
+        with with_reporter(lambda _text: None):
+            runner()
+    except Mismatch as exc:
+        if state["fatal"] is not None:
+            from grader.checks import sandbox_message
+
+            status, message = sandbox_message(state["fatal"])
+            return Outcome(0.0, message, {"case": state["last"]}, status=status)
+        return _failed(ctx, check_id, str(exc), state["last"])
+    except HypothesisException as exc:  # e.g. a flaky answer: the same input passed once and failed once
+        return Outcome(
+            0.0,
+            f"your code gave different answers to the same input ({type(exc).__name__})",
+            {"case": state["last"]},
+        )
+    return Outcome(1.0, f"{passed} ({state['tried']} cases)", {"cases": state["tried"]})
+
+
+def _one(ctx: Context, check_id: str, case: Case, inputs: dict[str, Any], replayed: bool = False) -> Outcome:
+    try:
+        case(ctx, **inputs)
+    except Mismatch as exc:
+        return _failed(ctx, check_id, str(exc), inputs)
+    except StudentError as exc:
+        return _failed(ctx, check_id, _sandbox_words(exc, inputs), inputs)
+    return Outcome(1.0, "this case passes" if replayed else "", {"case": inputs})
+
+
+def _failed(ctx: Context, check_id: str, words: str, inputs: dict[str, Any] | None) -> Outcome:
+    details: dict[str, Any] = {}
+    if inputs is not None:
+        details = {"counterexample": inputs, "replay": _replay(ctx, check_id, inputs)}
+    return Outcome(0.0, words, details)

@@ -1,0 +1,111 @@
+"""The result model: one check's outcome, one submission's result (the contract's JSON), the check-set hash.
+
+Everything here is plain data. A result dict is what `grade_submission` returns, what the batch runner
+stores and what the HTML report renders; the traces of scenario checks travel next to it, never inside it.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import inspect
+import json
+from dataclasses import dataclass, field
+from importlib import metadata
+from typing import Any
+
+STATUSES = ("passed", "failed", "error", "timeout")
+
+
+@dataclass
+class CheckResult:
+    """One check's outcome: points earned of max_points, a status, a message a student can act on."""
+
+    id: str
+    name: str
+    kind: str
+    visibility: str
+    max_points: float
+    points: float = 0.0
+    status: str = "failed"
+    message: str = ""
+    details: dict[str, Any] = field(default_factory=dict)
+
+    def to_json(self) -> dict[str, Any]:
+        """The contract's per-check record (plus `visibility`)."""
+        return {
+            "id": self.id,
+            "name": self.name,
+            "kind": self.kind,
+            "visibility": self.visibility,
+            "points": round(self.points, 6),
+            "max_points": self.max_points,
+            "status": self.status,
+            "message": self.message,
+            "details": self.details,
+        }
+
+
+def package_version() -> str:
+    """The installed simiam distribution's version ("0+unknown" when run from a bare checkout)."""
+    try:
+        return metadata.version("simiam")
+    except metadata.PackageNotFoundError:
+        return "0+unknown"
+
+
+def check_set_hash(checks: list) -> str:
+    """A short hash over what decides a score: every check's id, weight, kind, visibility and scoring code.
+
+    Two runs with the same hash (and seed) ran the same checks the same way, so a local and an official
+    result can be compared.
+    """
+    h = hashlib.sha256()
+    for check in sorted(checks, key=lambda c: c.id):
+        h.update(json.dumps([check.id, check.weight, check.kind, check.visibility]).encode())
+        try:
+            h.update(inspect.getsource(check.run).encode())
+        except (OSError, TypeError):
+            h.update(repr(check.run).encode())
+    return h.hexdigest()[:16]
+
+
+def grader_version(checks: list) -> str:
+    """The package version plus the check-set hash, e.g. "0.1.0+3fa2c9d01b7e4a55"."""
+    return f"{package_version()}+{check_set_hash(checks)}"
+
+
+def submission_result(
+    *,
+    week: int,
+    seed: int,
+    submission: str,
+    checks: list,
+    results: list[CheckResult],
+    status: str = "graded",
+    message: str = "",
+    extra: dict[str, Any] | None = None,
+) -> dict[str, Any]:
+    """Assemble the contract's result JSON for one submission."""
+    score = sum(r.points for r in results)
+    max_score = sum(r.max_points for r in results)
+    out: dict[str, Any] = {
+        "week": week,
+        "score": round(score, 6),
+        "max_score": round(max_score, 6),
+        "status": status,
+        "seed": seed,
+        "grader_version": grader_version(checks),
+        "check_set_hash": check_set_hash(checks),
+        "submission": submission,
+        "checks": [r.to_json() for r in results],
+    }
+    if message:
+        out["message"] = message
+    if extra:
+        out.update(extra)
+    return out
+
+
+def all_passed(result: dict[str, Any]) -> bool:
+    """True when the submission was graded and every check passed (the CLI's exit status 0)."""
+    return result.get("status") == "graded" and all(c["status"] == "passed" for c in result["checks"])

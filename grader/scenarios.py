@@ -1,0 +1,213 @@
+"""Scenario runs: the student's supervisor drives the robot in the trusted simulator; the grader measures.
+
+The student's code runs in the worker behind a RemoteBrain and only ever returns wheel speeds (and debug
+values that are only plotted). Every metric here is computed from the simulator's TRUE pose and the true
+goal: time to goal, final distance, minimum clearance, collisions, the course's settle time and overshoot.
+A run that the student's code breaks (an exception, a timeout, an invalid command) ends there and keeps
+its trace so far.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from dataclasses import dataclass, field
+from typing import Any
+
+from grader import reference as ref
+from grader.checks import Context, Outcome
+from grader.sandbox.errors import SandboxError
+from simiam.simulator import BrainError, Simulator, add_row
+from simiam.trace import Trace
+from simiam.world import World, load_world
+
+
+@dataclass
+class Run:
+    """One scenario run: the trace (Seam 2) and how it ended."""
+
+    label: str
+    trace: Trace
+    reached: bool = False
+    t_goal: float | None = None
+    problem: str = ""  # the student's code broke the run: why, in words
+    sandbox_error: SandboxError | None = None
+    metrics: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def collision(self) -> dict | None:
+        return self.trace.collision
+
+    @property
+    def final_pose(self) -> tuple[float, float, float]:
+        s = self.trace.steps
+        return s["x"][-1], s["y"][-1], s["theta"][-1]
+
+
+def _brain(ctx: Context, settings: dict[str, Any]):
+    from grader.sandbox.session import RemoteBrain
+
+    return RemoteBrain(ctx.session, settings)
+
+
+def run(
+    ctx: Context,
+    label: str,
+    settings: dict[str, Any],
+    seconds: float,
+    *,
+    world: World | None = None,
+    start: tuple[float, float, float] | None = None,
+    goal: tuple[float, float] | None = None,
+    goal_radius: float | None = None,
+) -> Run:
+    """Run the student's supervisor with `settings` for `seconds` (stop at a collision, or once the TRUE
+    position is within `goal_radius` of `goal`)."""
+    config = ctx.config
+    world = world or load_world(config.world)
+    start = start or world.start
+    settings = {**settings, "start": list(start)}
+    sim_goal = World(world.name, world.obstacles, [start], goal, world.source) if goal else world
+    result = Run(
+        label, Trace(week=ctx.week, dt=config.dt, world=world.to_json(), robot={}, start=list(start))
+    )
+    try:
+        brain = _brain(ctx, settings)
+        sim = Simulator(sim_goal, brain, ctx.spec, dt=config.dt, start=start)
+    except SandboxError as exc:
+        result.problem, result.sandbox_error = _words(exc, 0.0), exc
+        return result
+    trace = sim.new_trace()
+    trace.meta = {"check_label": label, "seed": ctx.seed}
+    add_row(trace, sim.last, start)
+    result.trace = trace
+    for _ in range(int(round(seconds / sim.dt))):
+        try:
+            rec = sim.step()
+        except BrainError as exc:
+            result.problem = f"at t = {sim.t:.2f} s your supervisor gave an invalid command: {exc}"
+            break
+        except SandboxError as exc:
+            result.problem, result.sandbox_error = _words(exc, sim.t), exc
+            break
+        add_row(trace, rec)
+        if rec.collided:
+            break
+        if goal is not None and math.dist(rec.pose[:2], goal) < goal_radius:
+            result.reached, result.t_goal = True, rec.t
+            break
+    trace.collision = sim.first_collision
+    x, y, _ = result.final_pose
+    result.metrics = {
+        "seconds": trace.seconds,
+        "collided": trace.collision is not None,
+        "path_length": path_length(trace),
+    }
+    if goal is not None:
+        result.metrics.update(
+            {
+                "goal": list(goal),
+                "reached": result.reached,
+                "time_to_goal": result.t_goal,
+                "final_distance": math.dist((x, y), goal),
+            }
+        )
+    return result
+
+
+def _words(exc: SandboxError, t: float) -> str:
+    from grader.checks import sandbox_message
+
+    return f"at t = {t:.2f} s " + sandbox_message(exc)[1]
+
+
+def path_length(trace: Trace) -> float:
+    """Distance the robot really drove (true positions)."""
+    xs, ys = trace.steps["x"], trace.steps["y"]
+    return sum(math.hypot(xs[i + 1] - xs[i], ys[i + 1] - ys[i]) for i in range(len(xs) - 1))
+
+
+def max_displacement(trace: Trace) -> float:
+    """How far from its start the robot ever got."""
+    x0, y0 = trace.steps["x"][0], trace.steps["y"][0]
+    return max(math.hypot(x - x0, y - y0) for x, y in zip(trace.steps["x"], trace.steps["y"], strict=False))
+
+
+def settle_and_overshoot(trace: Trace, goal: tuple[float, float]) -> tuple[float | None, float]:
+    """The course's part-3.2 measures, from the TRUE pose and the true goal heading.
+
+    y = wrapped true heading, r = heading from the true position to the goal, one sample per step from t = 0.
+    settle = (k - 20) dt with k the first index that ends 21 consecutive samples with |(r - y)/r| < 0.1
+    (None if it never settles). overshoot = |r_i - y_i| / |r_i| at the sample where y goes furthest in the
+    direction of r (min y for a goal heading below 0, as the course's goal (0, -1); max y otherwise).
+    """
+    s = trace.steps
+    dt = trace.dt
+    y = [ref.wrap(th) for th in s["theta"]]
+    r = [ref.theta_g(px, py, *goal) for px, py in zip(s["x"], s["y"], strict=False)]
+    run_length, settle = 0, None
+    for k, (rk, yk) in enumerate(zip(r, y, strict=False)):
+        run_length = run_length + 1 if rk != 0 and abs((rk - yk) / rk) < 0.1 else 0
+        if run_length == 21:
+            settle = (k - 20) * dt
+            break
+    sign = -1.0 if r[0] < 0 else 1.0
+    i = max(range(len(y)), key=lambda k: sign * y[k])
+    overshoot = abs(r[i] - y[i]) / abs(r[i]) if r[i] != 0 else 1.0
+    return settle, overshoot
+
+
+def go_to_angle_check(hidden: bool):
+    """Week 2: go-to-angle turns the TRUE heading to theta_d (within 0.2 rad after 8 s, no collision)."""
+
+    def go_to_angle(ctx: Context) -> Outcome:
+        if hidden:
+            rng = random.Random(f"{ctx.seed}:go_to_angle")
+            angles = [rng.choice((-1, 1)) * rng.uniform(0.3, 2.8) for _ in range(3)]
+        else:
+            angles = [math.pi / 4, -2.0]
+        good, lines, details = 0, [], {"runs": []}
+        for theta_d in angles:
+            r = run(ctx, f"theta_d = {theta_d:.3f}", {"theta_d": theta_d, "v": 0.1}, 8.0)
+            keep(ctx, "week2.go_to_angle." + ("other_angles" if hidden else "reaches_theta_d"), r)
+            err = ref.angle_diff(r.final_pose[2], theta_d)
+            ok = not r.problem and r.collision is None and err <= 0.2
+            good += ok
+            why = r.problem or (
+                "it collided" if r.collision else f"the true heading ended {err:.2f} rad away"
+            )
+            lines.append(f"theta_d = {theta_d:.2f}: " + ("reached" if ok else why))
+            details["runs"].append(
+                {"theta_d": theta_d, "heading_error": err, **r.metrics, "problem": r.problem}
+            )
+        return Outcome(good / len(angles), "; ".join(lines), details, status=fatal_status(ctx))
+
+    return go_to_angle
+
+
+def keep(ctx: Context, check_id: str, r: Run) -> None:
+    """Store the run's trace for the report: the first under the check id, later ones as id#2, id#3..."""
+    key, n = check_id, 1
+    while key in ctx.traces:
+        n += 1
+        key = f"{check_id}#{n}"
+    r.trace.meta["check"] = check_id
+    ctx.traces[key] = r.trace.to_json()
+    if r.sandbox_error is not None and ctx.memo.get("fatal") is None and not _student_error(r.sandbox_error):
+        ctx.memo["fatal"] = r.sandbox_error
+
+
+def _student_error(exc: SandboxError) -> bool:
+    from grader.sandbox.errors import StudentError
+
+    return isinstance(exc, StudentError)
+
+
+def fatal_status(ctx: Context) -> str | None:
+    """ "timeout" or "error" when a run of this check ended with a timeout or a dead worker, else None."""
+    fatal = ctx.memo.pop("fatal", None)
+    if fatal is None:
+        return None
+    from grader.checks import sandbox_message
+
+    return sandbox_message(fatal)[0]
