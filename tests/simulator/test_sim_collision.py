@@ -1,0 +1,58 @@
+"""Body collisions: edge crossings with closed intervals (touching counts); containment is not detected."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from sim_helpers import wrong
+
+from simiam.physics.collision import plate_collides, plate_collides_exact
+from simiam.physics.segments import ObstacleEdges
+from simiam.physics.transform import transform_fast
+from simiam.robot.quickbot import BASE_PLATE
+
+FRONT = 0.0686  # the base plate's front vertex (0.0686, 0)
+
+
+def box(x0, y0, x1, y1):
+    return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], dtype=float)
+
+
+# (name, pose, obstacles, expected)
+CASES = [
+    ("touching the front vertex", (0.0, 0.0, 0.0), [box(FRONT, -0.5, 1.0, 0.5)], True),
+    ("crossing", (0.0, 0.0, 0.0), [box(0.05, -0.5, 1.0, 0.5)], True),
+    ("clear by 1 mm", (0.0, 0.0, 0.0), [box(FRONT + 0.001, -0.5, 1.0, 0.5)], False),
+    ("inside a big block (no edge crossing)", (0.0, 0.0, 0.0), [box(-1.0, -1.0, 1.0, 1.0)], False),
+    ("block inside the plate", (0.0, 0.0, 0.0), [box(-0.01, -0.01, 0.01, 0.01)], False),
+    ("rotated, touching a side", (0.0, 0.0, np.pi / 2), [box(-0.5, FRONT, 0.5, 1.0)], True),
+]
+
+
+def problems(collides) -> list:
+    out = []
+    for name, pose, obstacles, want in CASES:
+        xs, ys = transform_fast(pose, BASE_PLATE)
+        if collides(list(zip(xs, ys, strict=True)), obstacles) != want:
+            out.append(name)
+    return out
+
+
+def simiam_fast(plate, obstacles):
+    xs = [p[0] for p in plate]
+    ys = [p[1] for p in plate]
+    return plate_collides(xs, ys, ObstacleEdges(obstacles))
+
+
+def simiam_exact(plate, obstacles):
+    return plate_collides_exact(plate, ObstacleEdges(obstacles))
+
+
+@pytest.mark.parametrize("collides", [simiam_fast, simiam_exact], ids=["fast", "exact"])
+def test_collision_cases(collides):
+    assert problems(collides) == []
+
+
+@pytest.mark.parametrize("name", ["plate_collides", "plate_collides_with_containment"])
+def test_collision_check_catches(name):
+    assert problems(getattr(wrong("collision_strict"), name))

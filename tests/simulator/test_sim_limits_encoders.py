@@ -1,0 +1,75 @@
+"""limit_speeds (clamp, then the strict dead zone at 30*2*pi/60) and the encoder's rounding and carry."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from sim_helpers import wrong
+
+from simiam.robot.quickbot import MIN_VEL_30RPM, limit_speeds, spec_for_week
+from simiam.robot.wheel_encoder import WheelEncoder
+
+W4 = spec_for_week(4)
+
+
+def dead_zone_problems(limit) -> list:
+    mx, mn = W4.max_vel, W4.min_vel
+    cases = [
+        ((mn, -mn), (mn, -mn)),                                   # exactly min_vel: kept (strict test)
+        ((math.nextafter(mn, 0), 5.0), (0.0, 5.0)),               # one ulp below: zeroed
+        ((-math.nextafter(mn, 0), -5.0), (0.0, -5.0)),
+        ((math.pi, 1.0), (math.pi, 0.0)),                         # pi is one ulp above min_vel
+        ((20.0, -20.0), (mx, -mx)),                               # clamp
+        ((0.5, 1e9), (0.0, mx)),
+    ]
+    return [(args, limit(*args, mx, mn), want) for args, want in cases if limit(*args, mx, mn) != want]
+
+
+def test_min_vel_is_one_ulp_below_pi():
+    assert MIN_VEL_30RPM == math.nextafter(math.pi, 0) == W4.min_vel
+
+
+def test_dead_zone_is_strict():
+    assert dead_zone_problems(limit_speeds) == []
+
+
+@pytest.mark.parametrize("name", ["non_strict", "dead_zone_first", "no_dead_zone"])
+def test_dead_zone_check_catches(name):
+    assert dead_zone_problems(getattr(wrong("limits_wrong"), name))
+
+
+def test_weeks_1_to_3_have_no_dead_zone():
+    for week in (1, 2, 3):
+        spec = spec_for_week(week)
+        assert spec.limit_speeds(0.1, -9.0) == (0.1, -80 * 2 * math.pi / 60)
+
+
+def encoder_problems(cls) -> list:
+    out = []
+    e = cls(16)
+    e.update(math.pi / 16, 1.0)                 # exactly half a tick: rounds away from zero
+    if e.ticks != 1:
+        out.append(("half tick", e.ticks))
+    e = cls(16)
+    e.update(-math.pi / 16, 1.0)
+    if e.ticks != -1:
+        out.append(("minus half tick", e.ticks))
+    e = cls(16)
+    tick = 2 * math.pi / 16
+    seen = []
+    for _ in range(5):                          # 0.4 tick per step: the remainder carries over
+        e.update(0.4 * tick, 1.0)
+        seen.append(e.ticks)
+    if seen != [0, 1, 1, 2, 2]:
+        out.append(("carry", seen))
+    return out
+
+
+def test_encoder_rounding_and_carry():
+    assert encoder_problems(WheelEncoder) == []
+
+
+@pytest.mark.parametrize("name", ["encoder_no_carry", "encoder_bankers"])
+def test_encoder_check_catches(name):
+    assert encoder_problems(wrong(name).WheelEncoder)
