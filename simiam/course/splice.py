@@ -105,7 +105,7 @@ def match_blocks(
         if len(got) == len(want):
             pairs.update({w.ordinal: _pair_by_tag(w, want, got) for w in want})
         elif len(got) > len(want):
-            extra = got[len(want)]
+            extra = _first_extra(want, got)
             errors.append(
                 BlockError(
                     file,
@@ -132,6 +132,16 @@ def match_blocks(
                 )
             )
     return pairs, errors
+
+
+def _first_extra(want: list[Block], got: list[Block]) -> Block:
+    """The block that looks added: the first repeat of a tag the stub has once, else the first surplus."""
+    seen: set[str] = set()
+    for g in got:
+        if g.tag and g.tag in seen and sum(w.tag == g.tag for w in want) == 1:
+            return g
+        seen.add(g.tag)
+    return got[len(want)]
 
 
 def _pair_by_tag(want: Block, wants: list[Block], got: list[Block]) -> Block:

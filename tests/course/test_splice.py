@@ -1,0 +1,214 @@
+"""Splicing a submission's blocks into the pristine stub: the grader's trust boundary.
+
+Each property is written as a check that takes a splice function; the real one passes every check and each
+wrong implementation in tests/data/blocks/wrong_splicers.py fails the check written against it.
+"""
+
+import ast
+import importlib.util
+import os
+from pathlib import Path
+
+import pytest
+
+from simiam.course.blocks import find_blocks, splice, splice_folder
+
+DATA = Path(__file__).parents[1] / "data" / "blocks"
+STUB = (DATA / "stub.py").read_text()
+GOOD = (DATA / "good.py").read_text()
+
+
+def read(name: str) -> str:
+    return (DATA / name).read_text()
+
+
+def _wrong():
+    spec = importlib.util.spec_from_file_location("wrong_splicers", DATA / "wrong_splicers.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.WRONG
+
+
+def bodies(text: str) -> dict:
+    """Block bodies (as ASTs) by function and START tag: the identity of a block, whatever its position."""
+    return {(b.scope, b.tag): ast.dump(ast.parse(b.body.strip() + "\n")) for b in find_blocks(text, "x.py")}
+
+
+def same_code(a: str, b: str) -> bool:
+    return ast.dump(ast.parse(a)) == ast.dump(ast.parse(b))
+
+
+# ---------------------------------------------------------------------- checks (a splice function each)
+
+
+def check_reordered(fn) -> None:
+    """Functions moved around: each body still lands in its own function."""
+    result = fn(STUB, read("reordered.py"), "controller.py")
+    assert bodies(result.text) == bodies(read("reordered.py"))
+
+
+def check_reindented(fn) -> None:
+    """A file re-indented to 2 spaces, and bodies indented deeper or with tabs, splice to the same code."""
+    for name in ("reindented.py", "deeper_and_tabs.py"):
+        result = fn(STUB, read(name), "controller.py")
+        assert same_code(result.text, GOOD), name
+        assert not result.errors
+
+
+def check_outside_not_run(fn) -> None:
+    """Edits outside the blocks are reported, never taken."""
+    result = fn(STUB, read("outside_edits.py"), "controller.py")
+    assert "import os" not in result.text and "10 * self.Kp" not in result.text
+    assert same_code(result.text, GOOD)
+    assert [(e.first_line, e.last_line) for e in result.outside_edits] == [(4, 4), (23, 23)]
+
+
+def check_swallow(fn) -> None:
+    """A body that opens a string or a bracket cannot eat the stub's code after it."""
+    for name in ("swallow.py", "open_bracket.py"):
+        result = fn(STUB, read(name), "controller.py")
+        assert "self.theta_g = theta_g" in result.text
+        compile(result.text, "controller.py", "exec")
+        assert [(e.line, "syntax error" in e.message) for e in result.errors] == [(16, True)], name
+        assert "Steer.execute" not in result.blocks_taken
+
+
+CHECKS = [check_reordered, check_reindented, check_outside_not_run, check_swallow]
+CAUGHT_BY = {
+    "by_ordinal": check_reordered,
+    "no_reindent": check_reindented,
+    "whole_file": check_outside_not_run,
+    "no_syntax_check": check_swallow,
+}
+
+
+@pytest.mark.parametrize("check", CHECKS, ids=lambda c: c.__name__)
+def test_real_splice_passes(check):
+    check(splice)
+
+
+@pytest.mark.parametrize("name", sorted(CAUGHT_BY))
+def test_wrong_splice_is_caught(name):
+    with pytest.raises((AssertionError, SyntaxError)):
+        CAUGHT_BY[name](_wrong()[name])
+
+
+# ----------------------------------------------------------------------------------------- direct cases
+
+
+def test_good_submission_gives_back_the_submission():
+    result = splice(STUB, GOOD, "controller.py")
+    assert result.text == GOOD
+    assert result.ok and not result.outside_edits
+    assert result.blocks_taken == [
+        "Steer.__init__",
+        "Steer.execute",
+        "Steer.execute (block 2)",
+        "wheel_speed",
+    ]
+
+
+def test_syntax_error_names_the_line_and_keeps_the_placeholder():
+    result = splice(STUB, read("syntax_error.py"), "controller.py")
+    [err] = result.errors
+    assert (err.file, err.line) == ("controller.py", 18)
+    assert "syntax error in the code block of Steer.execute (block 2)" in err.message
+    assert "never closed" in err.message
+    assert result.blocks_kept == ["Steer.execute (block 2)"]
+    assert "        e_k = 0.0\n" in result.text  # the stub's placeholder
+    assert "math.atan2(y_g - y, x_g - x)" in result.text  # the other blocks were taken
+
+
+@pytest.mark.parametrize(
+    "fixture, line, words",
+    [
+        (
+            "deleted_end.py",
+            16,
+            ["inside the block opened at line 14", "the stub's version of this file is used"],
+        ),
+        ("nested.py", 10, ["inside the block opened at line 8"]),
+        ("duplicated_start.py", 27, ["inside the block opened at line 26"]),
+        ("duplicated_block.py", 17, ["Steer.execute has 3 code blocks, the stub has 2", "duplicated"]),
+        ("deleted_markers.py", 7, ["Steer.__init__ has 0 code block(s), the stub has 1", "deleted"]),
+    ],
+)
+def test_broken_markers(fixture, line, words):
+    result = splice(STUB, read(fixture), "controller.py")
+    assert result.errors, fixture
+    err = result.errors[0]
+    assert (err.file, err.line) == ("controller.py", line)
+    for w in words:
+        assert w in err.message
+    compile(result.text, "controller.py", "exec")
+
+
+def test_duplicated_block_keeps_only_that_function_from_the_stub():
+    result = splice(STUB, read("duplicated_block.py"), "controller.py")
+    assert result.blocks_taken == ["Steer.__init__", "wheel_speed"]
+    assert "self.Kp = 4.0" in result.text and "theta_g = 0.0" in result.text
+
+
+def test_block_in_a_function_the_stub_does_not_have():
+    sub = GOOD + "\n\ndef extra():\n    # START CODE BLOCK\n    import os\n    # END CODE BLOCK\n"
+    result = splice(STUB, sub, "controller.py")
+    assert [(e.line, "where the stub has none" in e.message) for e in result.errors] == [(36, True)]
+    assert "import os" not in result.text
+
+
+def test_reindented_file_reports_no_outside_edits():
+    result = splice(STUB, read("reindented.py"), "controller.py")
+    assert result.outside_edits == []
+
+
+# ---------------------------------------------------------------------------------------------- folders
+
+
+@pytest.fixture
+def folders(tmp_path):
+    stub, sub, out = tmp_path / "stub", tmp_path / "sub", tmp_path / "out"
+    stub.mkdir()
+    sub.mkdir()
+    (stub / "controller.py").write_text(STUB)
+    (stub / "other.py").write_text(
+        "def g():\n    # START CODE BLOCK\n    y = 0\n    # END CODE BLOCK\n    return y\n"
+    )
+    (stub / "README.md").write_text("not code")
+    return stub, sub, out
+
+
+def test_splice_folder(folders):
+    stub, sub, out = folders
+    (sub / "controller.py").write_text(read("syntax_error.py"))
+    (sub / "mine.py").write_text("print('hi')\n")
+    report = splice_folder(stub, sub, out)
+    assert sorted(p.name for p in out.iterdir()) == ["controller.py", "other.py"]
+    assert report.missing_files == ["other.py"]
+    assert (out / "other.py").read_text() == (stub / "other.py").read_text()
+    assert report.extra_files == ["mine.py"]
+    assert not report.ok
+    msgs = report.messages()
+    assert msgs[0] == "other.py: file missing from the submission; the stub's version is used"
+    assert msgs[1].startswith("controller.py:18: syntax error")
+    assert msgs[2] == "mine.py: not part of the assignment (ignored)"
+    assert report.to_json()["files"]["controller.py"]["errors"][0]["line"] == 18
+
+
+def test_splice_folder_does_not_follow_links(folders, tmp_path):
+    stub, sub, out = folders
+    secret = tmp_path / "secret.py"
+    secret.write_text(GOOD)
+    os.symlink(secret, sub / "controller.py")
+    report = splice_folder(stub, sub, out)
+    [err] = report.files["controller.py"].errors
+    assert "not a regular file" in err.message
+    assert (out / "controller.py").read_text() == STUB
+
+
+def test_splice_folder_refuses_binary_and_huge_files(folders):
+    stub, sub, out = folders
+    (sub / "controller.py").write_bytes(b"x = 1\n# \xff\xfe\n")
+    (sub / "other.py").write_text("#" * 300_000)
+    report = splice_folder(stub, sub, out)
+    assert str(report.files["controller.py"].errors[0]) == "controller.py:2: not valid UTF-8 text"
+    assert "more than the" in report.files["other.py"].errors[0].message
