@@ -1,0 +1,156 @@
+"""`simiam run weekN [PATH | --solutions]`: a student's own local run of the week's scenario.
+
+Loads the code in this process (trusted: it is the student's own machine), runs the week's scenario
+headless, writes the trace (CSV and JSON) and the replay page, and prints a short summary. A submission
+that does not load prints its LoadErrors (file:line: message) and exits 1; an exception inside the
+student's code during the run is reported the same way, after writing the trace up to that step.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+from simiam.control.local_brain import LocalBrain
+from simiam.course.loader import load_submission, locate_in_folder
+from simiam.course.weeks import WeekConfig, week_config
+from simiam.simulator import BrainError, Simulator, add_row
+from simiam.world import WorldFileError, load_world
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def resolve_folder(week: WeekConfig, path: str | None, solutions: bool) -> Path:
+    """The submission folder: PATH, or solutions/weekN, or ./assignments/weekN (cwd first, then the repo)."""
+    if path:
+        return Path(path).expanduser()
+    kind = "solutions" if solutions else "assignments"
+    here = Path.cwd() / kind / week.name
+    return here if here.is_dir() else REPO / kind / week.name
+
+
+def _fail(message: str, code: int) -> int:
+    print(message, file=sys.stderr)
+    return code
+
+
+def main(args) -> int:
+    """Run `simiam run` with parsed arguments (week, path, solutions, seconds, dt, out, world)."""
+    try:
+        week = week_config(args.week)
+    except ValueError as exc:
+        return _fail(f"simiam run: {exc}", 2)
+    if args.path and args.solutions:
+        return _fail("simiam run: give either a folder or --solutions, not both", 2)
+    if not (math.isfinite(args.dt) and args.dt > 0):
+        return _fail(f"simiam run: --dt must be a positive number of seconds, got {args.dt}", 2)
+    seconds = week.seconds if args.seconds is None else args.seconds
+    if not (math.isfinite(seconds) and seconds > 0):
+        return _fail(f"simiam run: --seconds must be positive, got {seconds}", 2)
+    folder = resolve_folder(week, args.path, args.solutions)
+    if not folder.is_dir():
+        return _fail(f"simiam run: no such folder: {folder}", 2)
+    try:
+        world = load_world(args.world or week.world)
+    except (WorldFileError, OSError) as exc:
+        return _fail(f"simiam run: cannot read the world: {exc}", 2)
+
+    sub = load_submission(folder, week)
+    if not sub.ok:
+        print(f"Your {week.name} code in {folder} could not be loaded:", file=sys.stderr)
+        for err in sub.errors:
+            print(f"  {err}", file=sys.stderr)
+        return 1
+
+    start = world.start
+    try:
+        brain = LocalBrain(sub, week, start=start)
+        sim = Simulator(world, brain, week.spec, dt=args.dt, start=start)
+    except Exception as exc:  # noqa: BLE001 - the student's __init__ may raise anything
+        return _fail(_student_error(exc, folder, "while setting up the supervisor"), 1)
+
+    trace = sim.new_trace()
+    sup = brain.supervisor
+    if sup.current_state == "go_to_goal":
+        trace.goal = [float(sup.goal[0]), float(sup.goal[1])]
+    trace.meta = {"submission": str(folder), "source": "simiam run"}
+    add_row(trace, sim.last, start)
+    error = None
+    for _ in range(int(round(seconds / args.dt))):
+        try:
+            rec = sim.step()
+        except BrainError as exc:
+            error = f"{folder.name}: your code returned an invalid command at t = {sim.t:.3f} s: {exc}"
+            break
+        except Exception as exc:  # noqa: BLE001 - report the student's exception, keep the trace so far
+            error = _student_error(exc, folder, f"at t = {sim.t:.3f} s")
+            break
+        add_row(trace, rec)
+        if rec.collided:
+            break
+    trace.collision = sim.first_collision
+
+    out = Path(args.out)
+    csv_path, json_path = trace.write(out, stem=week.name)
+    print(f"trace: {csv_path}")
+    print(f"trace: {json_path}")
+    replay = _write_replay(trace.to_json(), out / f"{week.name}.html")
+    if replay is not None:
+        print(f"replay: {replay}")
+    print()
+    print(summary(week, folder, trace, sup))
+    if error:
+        print(file=sys.stderr)
+        print(error, file=sys.stderr)
+        return 1
+    return 0
+
+
+def _student_error(exc: BaseException, folder: Path, when: str) -> str:
+    file, line = locate_in_folder(exc, folder)
+    where = f"{file}:{line}: " if file else ""
+    text = str(exc)
+    return f"{where}{type(exc).__name__}{': ' + text if text else ''} ({when})"
+
+
+def _write_replay(trace_json: dict, path: Path) -> Path | None:
+    try:
+        from simiam.viewer.replay import write_replay
+    except ImportError:
+        return None
+    return write_replay(trace_json, path)
+
+
+def summary(week: WeekConfig, folder: Path, trace, sup) -> str:
+    """One paragraph: final pose, estimate, collision, and the goal (weeks 3-4) or heading (week 2)."""
+    s = trace.steps
+    n = len(trace) - 1
+    x, y, theta = s["x"][-1], s["y"][-1], s["theta"][-1]
+    wrapped = math.atan2(math.sin(theta), math.cos(theta))
+    parts = [f"Week {week.number} with {folder}: {trace.seconds:.2f} s simulated, {n} steps of {trace.dt} s."]
+    parts.append(f"Final true pose (x, y, theta) = ({x:.3f}, {y:.3f}, {wrapped:.3f}).")
+    est = (s["x_est"][-1], s["y_est"][-1], s["theta_est"][-1])
+    if None not in est:
+        err = math.hypot(est[0] - x, est[1] - y)
+        parts.append(f"Estimate = ({est[0]:.3f}, {est[1]:.3f}, {est[2]:.3f}), "
+                     f"{err:.3f} m from the true position.")
+    if trace.collision:
+        c = trace.collision
+        parts.append(f"COLLISION at t = {c['t']:.3f} s at ({c['pose'][0]:.3f}, {c['pose'][1]:.3f}).")
+    else:
+        parts.append("No collision.")
+    if trace.goal is not None:
+        d = math.hypot(x - trace.goal[0], y - trace.goal[1])
+        stopped = [t for t, st in zip(s["t"], s["state"], strict=True) if st == "stop"]
+        when = f"stopped at t = {stopped[0]:.2f} s" if stopped else "never stopped"
+        reached = "reached" if d < sup.d_stop else "not reached"
+        parts.append(f"Goal ({trace.goal[0]:g}, {trace.goal[1]:g}) {reached}: the robot {when}, "
+                     f"{d:.3f} m from it (d_stop = {sup.d_stop:g}).")
+    elif week.number == 2:
+        err = math.atan2(math.sin(sup.theta_d - theta), math.cos(sup.theta_d - theta))
+        parts.append(f"Heading error to theta_d = {sup.theta_d:.3f}: {err:+.3f} rad.")
+    else:
+        path = sum(math.hypot(s["x"][k + 1] - s["x"][k], s["y"][k + 1] - s["y"][k]) for k in range(n))
+        parts.append(f"Distance driven: {path:.2f} m.")
+    return " ".join(parts)
