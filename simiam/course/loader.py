@@ -117,14 +117,14 @@ def _new_package(folder: Path) -> str:
     return name
 
 
-def _error_from_exception(exc: BaseException, folder: Path, default_file: str) -> LoadError:
+def _error_from_exception(exc: BaseException, folder: Path, default_file: str, package: str) -> LoadError:
     """Say where in the student's folder an import failed and why."""
     if isinstance(exc, SyntaxError):
         file = Path(exc.filename).name if exc.filename else default_file
         kind = "indentation error" if isinstance(exc, IndentationError) else "syntax error"
         return LoadError(file, exc.lineno, f"{kind}: {exc.msg}")
     file, line = locate_in_folder(exc, folder)
-    text = str(exc)
+    text = str(exc).replace(f"{package}.", "")  # say "go_to_goal", not "simiam_submission_7.go_to_goal"
     message = f"{type(exc).__name__}: {text}" if text else type(exc).__name__
     return LoadError(file or default_file, line, f"error while importing: {message}")
 
@@ -170,7 +170,7 @@ def load_submission(folder: Path | str, week) -> Submission:
         except BaseException as exc:  # noqa: BLE001 - any failure of student code is reported, not raised
             if isinstance(exc, KeyboardInterrupt):
                 raise
-            err = _error_from_exception(exc, folder, file)
+            err = _error_from_exception(exc, folder, file, sub.package)
             key = (err.file, err.line, err.message)
             if key not in seen:  # a broken file imported by a sibling is reported once
                 seen.add(key)
