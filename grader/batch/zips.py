@@ -69,15 +69,12 @@ def _entry_kind(info: zipfile.ZipInfo) -> str:
     """'dir', 'file', or the name of a forbidden special file type (from the Unix mode bits, if any)."""
     if info.is_dir():
         return "dir"
-    mode = info.external_attr >> 16
-    if info.create_system == 3 and mode:   # made on Unix: the high 16 bits are st_mode
-        if stat.S_ISLNK(mode):
-            return "symlink"
-        if not stat.S_ISREG(mode) and not stat.S_ISDIR(mode):
-            return "special file"
-        if stat.S_ISDIR(mode):
-            return "dir"
-    return "file"
+    kind = stat.S_IFMT(info.external_attr >> 16)
+    if info.create_system != 3 or kind in (0, stat.S_IFREG):   # not Unix, or no type bits, or a file
+        return "file"
+    if kind == stat.S_IFDIR:
+        return "dir"
+    return "symlink" if kind == stat.S_IFLNK else "special file"
 
 
 def read_zip(path: Path, limits: Limits | None = None) -> dict[str, bytes]:
