@@ -16,7 +16,8 @@ sys.path.insert(0, str(HERE))          # batch_fake_grader, importable by the gr
 
 def load_wrong() -> object:
     """tests/data/batch/wrong_batch.py as a module."""
-    spec = importlib.util.spec_from_file_location("wrong_batch", HERE.parent / "data" / "batch" / "wrong_batch.py")
+    path = HERE.parent / "data" / "batch" / "wrong_batch.py"
+    spec = importlib.util.spec_from_file_location("wrong_batch", path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module

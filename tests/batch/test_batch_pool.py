@@ -17,12 +17,14 @@ from grader.batch.pool import WorkerPool, function_ref, kill_tree
 
 
 def task(sid: str, answer: str) -> dict:
-    return {"student": sid, "week": 3, "seed": 7, "files": {"answer.txt": base64.b64encode(answer.encode()).decode()}}
+    packed = base64.b64encode(answer.encode()).decode()
+    return {"student": sid, "week": 3, "seed": 7, "files": {"answer.txt": packed}}
 
 
 def run(tasks: list[dict], jobs: int = 2, budget: float = 30.0) -> dict[str, dict]:
     outcomes: dict[str, dict] = {}
-    WorkerPool(batch_fake_grader.fake_grade, jobs, budget).run(tasks, lambda t, o: outcomes.update({t["student"]: o}))
+    WorkerPool(batch_fake_grader.fake_grade, jobs, budget).run(
+        tasks, lambda t, o: outcomes.update({t["student"]: o}))
     return outcomes
 
 

@@ -52,7 +52,8 @@ def klass(tmp_path: Path) -> Path:
 def test_every_student_gets_a_status_and_all_files(klass: Path) -> None:
     report = run_batch(options(klass), grade_fn=FAKE)
     out = klass / "out"
-    statuses = {sid: json.loads((out / f"{sid}.json").read_text())["status"] for sid in [*ANSWERS, "gina", "hal"]}
+    statuses = {sid: json.loads((out / f"{sid}.json").read_text())["status"]
+                for sid in [*ANSWERS, "gina", "hal"]}
     assert statuses == {"alice": "graded", "bob": "graded", "carol": "crashed", "dave": "invalid",
                         "erin": "graded", "frank": "crashed", "gina": "invalid", "hal": "invalid"}
     assert report["counts"] == {"graded": 3, "invalid": 3, "timeout": 0, "crashed": 2}

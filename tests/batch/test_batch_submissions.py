@@ -55,7 +55,8 @@ def test_nested_single_folder_and_whole_course_zip(tmp_path: Path) -> None:
     nested = make_zip(tmp_path / "alice.zip", {"week3/go_to_goal.py": "K = 1\n", "week3/quickbot.py": "q\n"})
     sub = read_submission(Student("alice", nested, "zip"))
     assert sub.root == "week3" and set(sub.files) == {"go_to_goal.py", "quickbot.py"}
-    course = make_zip(tmp_path / "bob.zip", {"simiam/README.md": "r", "simiam/assignments/week2/quickbot.py": "2",
+    course = make_zip(tmp_path / "bob.zip", {"simiam/README.md": "r",
+                                             "simiam/assignments/week2/quickbot.py": "2",
                                              "simiam/assignments/week3/quickbot.py": "3",
                                              "simiam/assignments/week3/go_to_goal.py": "3"})
     sub = read_submission(Student("bob", course, "zip"))

@@ -64,7 +64,8 @@ def test_encrypted_entry_is_refused(tmp_path: Path) -> None:
 
 
 def test_junk_is_skipped_and_files_are_read(tmp_path: Path) -> None:
-    path = make_zip(tmp_path / "ok.zip", {"week3/go_to_goal.py": "K = 1\n", "__MACOSX/week3/._go_to_goal.py": "j",
+    path = make_zip(tmp_path / "ok.zip", {"week3/go_to_goal.py": "K = 1\n",
+                                          "__MACOSX/week3/._go_to_goal.py": "j",
                                           "week3/.DS_Store": "j", "week3/__pycache__/x.pyc": "j"})
     assert read_zip(path) == {"week3/go_to_goal.py": b"K = 1\n"}
 
