@@ -5,8 +5,8 @@ the robot frame, the estimated robot pose into the world frame (the manual, sect
 vectors from the robot to these points add up to u_ao, and a PID regulator steers along it.
 
 Student blocks (week 4) and the placeholders the stub gets:
-  1. __init__ gains (tunable, as the manual allows): `self.Kp = 4`, `self.Ki = 0.01`, `self.Kd = 0.1`
-     (the placeholder is these same values).
+  1. __init__ gains (tunable, as the manual allows). Placeholder: the course's `self.Kp = 4`,
+     `self.Ki = 0.01`, `self.Kd = 0.1`.
   2. execute: sensor_gains, u_i, u_ao, theta_ao, e_k. Placeholder: `sensor_gains = [0, 0, 0, 0, 0]`,
      `u_i = np.zeros((2, 5))`, `u_ao = np.sum(u_i, axis=1)`, `theta_ao = 0`, `e_k = 0`
      (the robot drives straight).

@@ -6,7 +6,8 @@ runs: the robot stays still or drives straight); in later weeks the solution's b
 
 `revised_in` lists the weeks whose stubs ship a *changed* filled version (the course changed the robot or
 the provided code around the block): `simiam migrate` keeps the shipped version there instead of carrying
-the student's older one. A test compares this table with the solutions, so it cannot silently drift.
+the student's older one. `tunable` blocks (gains) may ship other values in later weeks and are carried
+all the same. A test compares this table with the solutions, so it cannot silently drift.
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ class Placeholder:
     occurrence: int = 1
     revised_in: tuple[int, ...] = ()
     revised_why: str = ""
+    tunable: bool = False  # numbers to tune: later weeks may ship other values, yet migrate carries yours
 
     @property
     def key(self) -> tuple[str, str, int]:
@@ -79,6 +81,7 @@ reads 0.""",
         hint="""TODO (week 3, part 3): tune the PID gains so that theta settles on theta_g within 10%
 in 3 s or less, overshooting by 10% at most. With zero gains the robot never turns.""",
         code="self.Kp = 0\nself.Ki = 0\nself.Kd = 0",
+        tunable=True,
     ),
     Placeholder(
         "go_to_goal.py",
@@ -125,6 +128,7 @@ Until then the speeds pass through unchanged (w is lost when a motor saturates).
         week=4,
         hint="""Week 4: the PID gains that steer along u_ao. These values work; tune them if you like.""",
         code="self.Kp = 4\nself.Ki = 0.01\nself.Kd = 0.1",
+        tunable=True,
     ),
     Placeholder(
         "avoid_obstacles.py",

@@ -24,9 +24,9 @@ SHIPPED: dict[int, dict[str, list[tuple]]] = {
         ],
         "go_to_goal.py": [
             ("GoToGoal.__init__", 1, 3, 24, "8e8f77be67f2fefb"),
-            ("GoToGoal.execute", 1, 3, 42, "126f3d35805b72a3"),
-            ("GoToGoal.execute", 2, 3, 49, "7f82699eb72442ac"),
-            ("GoToGoal.execute", 3, 3, 55, "07dd008bfbbb2ab5"),
+            ("GoToGoal.execute", 1, 3, 44, "126f3d35805b72a3"),
+            ("GoToGoal.execute", 2, 3, 51, "7f82699eb72442ac"),
+            ("GoToGoal.execute", 3, 3, 57, "07dd008bfbbb2ab5"),
         ],
         "qb_supervisor.py": [
             ("QBSupervisor.ensure_w", 1, 3, 62, "440bf913048512a0"),
@@ -39,21 +39,21 @@ SHIPPED: dict[int, dict[str, list[tuple]]] = {
     4: {
         "avoid_obstacles.py": [
             ("AvoidObstacles.__init__", 1, 4, 32, "72e9bc04bc07b5cd"),
-            ("AvoidObstacles.execute", 1, 4, 51, "dd3373be5362fb68"),
-            ("AvoidObstacles.apply_sensor_geometry", 1, 4, 81, "3a0839f3e8ceebe1"),
-            ("AvoidObstacles.get_transformation_matrix", 1, 4, 99, "945e413f29a44a67"),
+            ("AvoidObstacles.execute", 1, 4, 53, "dd3373be5362fb68"),
+            ("AvoidObstacles.apply_sensor_geometry", 1, 4, 83, "3a0839f3e8ceebe1"),
+            ("AvoidObstacles.get_transformation_matrix", 1, 4, 101, "945e413f29a44a67"),
         ],
         "differential_drive.py": [
             ("uni_to_diff", 1, 2, 17, "4a3d747f72afaad3"),
         ],
         "go_to_goal.py": [
-            ("GoToGoal.__init__", 1, 3, 24, "fa36144b9f6fb646"),
-            ("GoToGoal.execute", 1, 3, 42, "6ea9f0cb1714bd70"),
-            ("GoToGoal.execute", 2, 3, 49, "67dabd64f946c78c"),
-            ("GoToGoal.execute", 3, 3, 55, "c319d9d978c7ce89"),
+            ("GoToGoal.__init__", 1, 3, 24, "db76f4f2efe88734"),
+            ("GoToGoal.execute", 1, 3, 44, "6ea9f0cb1714bd70"),
+            ("GoToGoal.execute", 2, 3, 51, "67dabd64f946c78c"),
+            ("GoToGoal.execute", 3, 3, 57, "c319d9d978c7ce89"),
         ],
         "qb_supervisor.py": [
-            ("QBSupervisor.update_odometry", 1, 2, 124, "3a9e7d085bc8639e"),
+            ("QBSupervisor.update_odometry", 1, 2, 126, "3a9e7d085bc8639e"),
         ],
         "quickbot.py": [
             ("get_ir_distances", 1, 2, 19, "cdd2f0f97318d5ef"),
