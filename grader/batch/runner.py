@@ -202,12 +202,13 @@ class _Run:
                            "grader": self.grader, "root": submission.root}
         if outcome.get("traceback"):
             result["batch"]["traceback"] = outcome["traceback"]
-        result["timing"] = {"seconds": round(float(outcome.get("seconds") or 0.0), 3)}
+        timing = result.get("timing") if isinstance(result.get("timing"), dict) else {}
+        result["timing"] = {**timing, "batch_seconds": round(float(outcome.get("seconds") or 0.0), 3)}
         stem = self.stems[sid]
         write_atomic(self.out / f"{stem}.html", html if isinstance(html, str) else fallback_page(sid, result))
         write_json(self.out / f"{stem}.json", result)
         status = result["status"]
-        self.record[sid] = {"status": status, "cached": False, "seconds": result["timing"]["seconds"]}
+        self.record[sid] = {"status": status, "cached": False, "seconds": result["timing"]["batch_seconds"]}
         if status != "graded":
             self.progress.message(f"{sid}: {status}: {result.get('message', '')}")
         self.progress.done(status)
