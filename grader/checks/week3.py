@@ -1,0 +1,247 @@
+"""Week 3 checks: go-to-goal (theta_g, wrapped error, P, I, D, memory), ensure_w, and scenario runs.
+
+Scenario metrics come from the simulator's true pose and the true goal, never from what the student's code
+reports: reaching goals within d_stop in 30 s without a collision, and the course's settle time (<= 3 s)
+and overshoot (<= 10 %) on the way to the goal (0, -1).
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+from hypothesis import strategies as st
+
+from grader import reference as ref
+from grader import scenarios
+from grader.checks import Check, Context, Mismatch, Outcome
+from grader.checks.answers import fmt, vector
+from grader.checks.pid import PID_CHECKS
+from grader.properties import run_property
+
+SUPERVISOR = ("qb_supervisor.py",)
+ALL = ("differential_drive.py", "quickbot.py", "go_to_angle.py", "go_to_goal.py", "qb_supervisor.py")
+V = 0.2
+D_STOP = 0.05  # the course's arrival radius, judged on the TRUE position
+ROBOT_D_STOP = 0.02  # the supervisor stops a little inside it, so odometry drift cannot stop it just outside
+SETTLE_LIMIT = 3.0
+OVERSHOOT_LIMIT = 0.10
+
+
+def _ensure_w(ctx: Context, v: float, w: float) -> tuple[float, float]:
+    answer = ctx.probe("ensure_w", v=v, w=w)
+    vel_r, vel_l = vector(answer, 2, f"with v = {fmt(v)}, w = {fmt(w)} your ensure_w returned")
+    return vel_r, vel_l
+
+
+_ensure_inputs = {"v": st.floats(-0.5, 0.5), "w": st.floats(-5.4, 5.4)}
+_saturating = [{"v": 0.25, "w": 3.0}, {"v": -0.25, "w": -3.0}, {"v": 10.0, "w": 1.0}]
+
+
+def keeps_w(ctx: Context) -> Outcome:
+    def case(ctx: Context, v: float, w: float) -> None:
+        spec = ctx.spec
+        applied = ref.limit_speeds(*_ensure_w(ctx, v, w), spec.max_vel, spec.min_vel)
+        got = ref.diff_to_uni(spec, *applied)[1]
+        want = max(min(w, ref.max_turn_rate(spec)), -ref.max_turn_rate(spec))
+        if abs(got - want) > 1e-6 * max(1.0, abs(want)):
+            raise Mismatch(
+                f"with v = {fmt(v)}, w = {fmt(w)} the robot turned at w = {fmt(got)} after its motor "
+                f"limits (max_vel = {fmt(spec.max_vel)} rad/s); ensure_w must keep w = {fmt(want)}"
+            )
+
+    return run_property(
+        ctx,
+        "week3.ensure_w.keeps_w",
+        _ensure_inputs,
+        case,
+        examples=_saturating,
+        passed="w is kept whenever the motors allow it",
+    )
+
+
+def within_max_vel(ctx: Context) -> Outcome:
+    def case(ctx: Context, v: float, w: float) -> None:
+        vel_r, vel_l = _ensure_w(ctx, v, w)
+        top = ctx.spec.max_vel
+        if max(abs(vel_r), abs(vel_l)) > top * (1 + 1e-9):
+            raise Mismatch(
+                f"with v = {fmt(v)}, w = {fmt(w)} your wheels were {fmt(vel_r)} and {fmt(vel_l)} rad/s; "
+                f"neither may exceed max_vel = {fmt(top)}"
+            )
+
+    return run_property(
+        ctx,
+        "week3.ensure_w.max_vel",
+        _ensure_inputs,
+        case,
+        examples=_saturating,
+        passed="no wheel exceeds max_vel",
+    )
+
+
+def gives_up_v(ctx: Context) -> Outcome:
+    def case(ctx: Context, v: float, w: float) -> None:
+        spec = ctx.spec
+        applied = ref.limit_speeds(*_ensure_w(ctx, v, w), spec.max_vel, spec.min_vel)
+        got = ref.diff_to_uni(spec, *applied)[0]
+        want = ref.diff_to_uni(spec, *ref.ensure_w_week3(spec, v, w))[0]
+        if abs(got - want) > 1e-6 * max(1.0, abs(want)):
+            raise Mismatch(
+                f"with v = {fmt(v)}, w = {fmt(w)} the robot drove at v = {fmt(got)}, expected "
+                f"{fmt(want)}: shift both wheels by the same amount, giving up only the v it must"
+            )
+
+    return run_property(
+        ctx,
+        "week3.ensure_w.gives_up_v",
+        _ensure_inputs,
+        case,
+        examples=_saturating,
+        passed="v is given up only as far as needed",
+    )
+
+
+def seeded_goals(seed: int, n: int, salt: str) -> list[tuple[float, float]]:
+    """Goals inside the week-3 arena, at least 0.5 m away and not straight ahead of the start."""
+    rng = random.Random(f"{seed}:{salt}")
+    goals: list[tuple[float, float]] = []
+    while len(goals) < n:
+        g = (round(rng.uniform(-1.1, 1.1), 2), round(rng.uniform(-1.1, 1.1), 2))
+        if math.hypot(*g) >= 0.5 and abs(math.atan2(g[1], g[0])) >= 0.35:
+            goals.append(g)
+    return goals
+
+
+def _go(ctx: Context, check_id: str, goal: tuple[float, float], seconds: float) -> scenarios.Run:
+    key = ("goal", goal, seconds)
+    if key not in ctx.memo:
+        settings = {"goal": list(goal), "v": V, "d_stop": ROBOT_D_STOP, "state": "go_to_goal"}
+        ctx.memo[key] = scenarios.run(
+            ctx, f"goal ({goal[0]:g}, {goal[1]:g})", settings, seconds, goal=goal, goal_radius=D_STOP
+        )
+        scenarios.keep(ctx, check_id, ctx.memo[key])
+    return ctx.memo[key]
+
+
+def reach_goals(hidden: bool):
+    check_id = "week3.go_to_goal." + ("other_goals" if hidden else "reach_goals")
+
+    def reach(ctx: Context) -> Outcome:
+        goals = (
+            seeded_goals(ctx.seed, 3, "hidden")
+            if hidden
+            else [(-1.0, 1.0), (0.0, -1.0), *seeded_goals(ctx.seed, 1, "visible")]
+        )
+        reached, lines, runs = 0, [], []
+        for goal in goals:
+            r = _go(ctx, check_id, goal, 30.0)
+            ok = r.reached and r.collision is None and not r.problem
+            reached += ok
+            if ok:
+                lines.append(f"({goal[0]:g}, {goal[1]:g}) reached in {r.t_goal:.1f} s")
+            else:
+                why = r.problem or (
+                    "collided"
+                    if r.collision
+                    else f"not reached in 30 s, {r.metrics['final_distance']:.2f} m away at the end"
+                )
+                lines.append(f"({goal[0]:g}, {goal[1]:g}) {why}")
+            runs.append({**r.metrics, "problem": r.problem})
+        return Outcome(
+            reached / len(goals), "; ".join(lines), {"runs": runs}, status=scenarios.fatal_status(ctx)
+        )
+
+    reach.__name__ = "reach_" + ("other_goals" if hidden else "goals")
+    return reach
+
+
+def _tracking(ctx: Context, check_id: str, goal: tuple[float, float]) -> tuple[scenarios.Run, dict]:
+    r = _go(ctx, check_id, goal, 30.0)  # the reach run to the same goal, when there is one
+    settle, overshoot = scenarios.settle_and_overshoot(r.trace, goal)
+    return r, {
+        "goal": list(goal),
+        "settle_time": settle,
+        "overshoot": overshoot,
+        **r.metrics,
+        "measured_from": "true pose and true goal heading",
+    }
+
+
+def settle_time(ctx: Context) -> Outcome:
+    r, m = _tracking(ctx, "week3.pid.settle_time", (0.0, -1.0))
+    if r.problem:
+        return Outcome(0.0, r.problem, m, status=scenarios.fatal_status(ctx))
+    if m["settle_time"] is None:
+        return Outcome(0.0, "theta never stayed within 10 % of theta_g (goal (0, -1)); tune Kp, Ki, Kd", m)
+    ok = m["settle_time"] <= SETTLE_LIMIT
+    return Outcome(
+        float(ok),
+        f"theta settled within 10 % of theta_g after {m['settle_time']:.2f} s "
+        f"(at most {SETTLE_LIMIT:g} s) on the way to (0, -1)",
+        m,
+    )
+
+
+def overshoot(ctx: Context) -> Outcome:
+    r, m = _tracking(ctx, "week3.pid.settle_time", (0.0, -1.0))
+    if r.problem:
+        return Outcome(0.0, r.problem, m, status=scenarios.fatal_status(ctx))
+    ok = m["overshoot"] <= OVERSHOOT_LIMIT
+    return Outcome(
+        float(ok), f"overshoot {m['overshoot']:.1%} of theta_g (at most 10 %) on the way to (0, -1)", m
+    )
+
+
+def tracking_other_goal(ctx: Context) -> Outcome:
+    goal = seeded_goals(ctx.seed, 1, "tracking")[0]
+    r, m = _tracking(ctx, "week3.pid.tracking_other_goal", goal)
+    if r.problem:
+        return Outcome(0.0, r.problem, m, status=scenarios.fatal_status(ctx))
+    settle, over = m["settle_time"], m["overshoot"]
+    ok = settle is not None and settle <= SETTLE_LIMIT and over <= OVERSHOOT_LIMIT
+    text = "never settled" if settle is None else f"settled after {settle:.2f} s"
+    return Outcome(float(ok), f"goal ({goal[0]:g}, {goal[1]:g}): {text}, overshoot {over:.1%}", m)
+
+
+CHECKS = [
+    *PID_CHECKS,
+    Check("week3.ensure_w.keeps_w", "ensure_w keeps w", "property", 1.0, keeps_w, SUPERVISOR),
+    Check(
+        "week3.ensure_w.max_vel",
+        "ensure_w never exceeds max_vel",
+        "property",
+        0.5,
+        within_max_vel,
+        SUPERVISOR,
+    ),
+    Check("week3.ensure_w.gives_up_v", "ensure_w gives up v, not w", "property", 0.5, gives_up_v, SUPERVISOR),
+    Check(
+        "week3.go_to_goal.reach_goals",
+        "reach goals within d_stop in 30 s",
+        "scenario",
+        2.0,
+        reach_goals(hidden=False),
+        ALL,
+    ),
+    Check("week3.pid.settle_time", "settle time <= 3 s (goal (0, -1))", "scenario", 1.0, settle_time, ALL),
+    Check("week3.pid.overshoot", "overshoot <= 10 % (goal (0, -1))", "scenario", 1.0, overshoot, ALL),
+    Check(
+        "week3.go_to_goal.other_goals",
+        "reach goals drawn per seed",
+        "scenario",
+        1.5,
+        reach_goals(hidden=True),
+        ALL,
+        visibility="hidden",
+    ),
+    Check(
+        "week3.pid.tracking_other_goal",
+        "settle and overshoot toward a goal drawn per seed",
+        "scenario",
+        1.0,
+        tracking_other_goal,
+        ALL,
+        visibility="hidden",
+    ),
+]
