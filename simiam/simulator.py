@@ -67,10 +67,21 @@ def _pair_or_none(p: Any) -> list[float] | None:
 
 
 def _points_or_none(p: Any) -> list[list[float]] | None:
-    if (isinstance(p, (list, tuple)) and len(p) == 2
-            and all(isinstance(r, (list, tuple)) and len(r) == 5 and all(_real(c) for c in r) for r in p)):
-        return [[float(c) for c in p[0]], [float(c) for c in p[1]]]
-    return None
+    if not (isinstance(p, (list, tuple)) and len(p) == 2):
+        return None
+    out = []
+    for row in p:
+        if not (isinstance(row, (list, tuple)) and len(row) == 5):
+            return None
+        if all(type(c) is float for c in row):  # the common case: one finiteness test for the row
+            if not math.isfinite(row[0] + row[1] + row[2] + row[3] + row[4]):
+                return None
+            out.append(list(row))
+        elif all(_real(c) for c in row):
+            out.append([float(c) for c in row])
+        else:
+            return None
+    return out
 
 
 def validate_command(command: Any) -> dict:
@@ -153,6 +164,11 @@ class Simulator:
         self._plate = list(spec.base_plate)
         self._cones = [mounted_cone(m, spec.ir_max_range, spec.ir_spread) for m in spec.ir_mounts]
         self._cone_points = [p for cone in self._cones for p in cone]
+        # how far from the body origin the plate and the cones reach: obstacles farther away are skipped
+        # for the whole step (ObstacleEdges.near is conservative, so nothing that could be hit is dropped)
+        self._plate_reach = max(math.hypot(px, py) for px, py in self._plate)
+        self._ir_reach = max(math.hypot(px, py) for px, py in self._cone_points)
+        self._raw_nothing = distance_to_raw(spec.ir_max_range, spec.ir_mode)
         self._ir_range = [spec.ir_max_range] * len(self._cones)
         self._ir_raw = [0] * len(self._cones)
         self._update_ir()
@@ -219,18 +235,26 @@ class Simulator:
 
     # --- physics ---
     def _update_ir(self) -> None:
-        xs, ys = transform_fast((self._x, self._y, self._theta), self._cone_points)
         spec = self.spec
-        obstacles = self._obstacles
         lo, hi, mode = spec.ir_min_range, spec.ir_max_range, spec.ir_mode
-        for i in range(len(self._cones)):
-            d = cone_range(xs[6 * i:6 * i + 6], ys[6 * i:6 * i + 6], obstacles, lo, hi)
+        n = len(self._cones)
+        near = self._obstacles.near(self._x, self._y, self._ir_reach)
+        if not near:  # open space: every cone reads max_range
+            self._ir_range[:] = [hi] * n
+            self._ir_raw[:] = [self._raw_nothing] * n
+            return
+        xs, ys = transform_fast((self._x, self._y, self._theta), self._cone_points)
+        for i in range(n):
+            d = cone_range(xs[6 * i:6 * i + 6], ys[6 * i:6 * i + 6], near, lo, hi)
             self._ir_range[i] = d
-            self._ir_raw[i] = distance_to_raw(d, mode)
+            self._ir_raw[i] = self._raw_nothing if d == hi else distance_to_raw(d, mode)
 
     def _check_collision(self) -> bool:
+        near = self._obstacles.near(self._x, self._y, self._plate_reach)
+        if not near:
+            return False
         xs, ys = transform_fast((self._x, self._y, self._theta), self._plate)
-        return plate_collides(xs, ys, self._obstacles)
+        return plate_collides(xs, ys, near)
 
     def _move(self) -> None:
         spec = self.spec

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from simiam.physics.segments import ObstacleEdges, crossing, polygon_edges
+from simiam.physics.segments import ObstacleEdges, PolygonBox, crossing, polygon_edges
 
 
 def plate_collides_exact(plate: Sequence[Sequence[float]], obstacles: ObstacleEdges) -> bool:
@@ -19,15 +19,16 @@ def plate_collides_exact(plate: Sequence[Sequence[float]], obstacles: ObstacleEd
     return False
 
 
-def plate_collides(xs: Sequence[float], ys: Sequence[float], obstacles: ObstacleEdges) -> bool:
-    """The same test as `plate_collides_exact` for the plate's world vertices (xs, ys), with bounding-box
-    culling that only skips pairs whose (padded) boxes are apart, so no real crossing is dropped."""
+def plate_collides(xs: Sequence[float], ys: Sequence[float], polygons: Sequence[PolygonBox]) -> bool:
+    """The same test as `plate_collides_exact` for the plate's world vertices (xs, ys) against `polygons`
+    (`ObstacleEdges.polygons`, or a superset of the candidates from `ObstacleEdges.near`), with
+    bounding-box culling that only skips pairs whose padded boxes are apart: no real crossing is dropped."""
     pxmin = min(xs)
     pxmax = max(xs)
     pymin = min(ys)
     pymax = max(ys)
     n = len(xs)
-    for oxmin, oxmax, oymin, oymax, table in obstacles.polygons:
+    for oxmin, oxmax, oymin, oymax, table in polygons:
         if pxmax < oxmin or pxmin > oxmax or pymax < oymin or pymin > oymax:
             continue
         for k in range(n):

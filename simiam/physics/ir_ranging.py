@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-from simiam.physics.segments import ObstacleEdges, crossing, polygon_edges
+from simiam.physics.segments import ObstacleEdges, PolygonBox, crossing, polygon_edges
 
 
 def cone_range_exact(cone: Sequence[Sequence[float]], obstacles: ObstacleEdges,
@@ -30,10 +30,11 @@ def cone_range_exact(cone: Sequence[Sequence[float]], obstacles: ObstacleEdges,
     return d_min
 
 
-def cone_range(xs: Sequence[float], ys: Sequence[float], obstacles: ObstacleEdges,
+def cone_range(xs: Sequence[float], ys: Sequence[float], polygons: Sequence[PolygonBox],
                min_range: float, max_range: float) -> float:
-    """`cone_range_exact` for the cone's world vertices (xs, ys; apex first), with bounding-box culling
-    that only skips pairs whose padded boxes are apart."""
+    """`cone_range_exact` for the cone's world vertices (xs, ys; apex first) against `polygons`
+    (`ObstacleEdges.polygons` or the candidates from `ObstacleEdges.near`), with bounding-box culling that
+    only skips pairs whose padded boxes are apart."""
     cxmin = min(xs)
     cxmax = max(xs)
     cymin = min(ys)
@@ -42,7 +43,7 @@ def cone_range(xs: Sequence[float], ys: Sequence[float], obstacles: ObstacleEdge
     ay = ys[0]
     n = len(xs)
     d_min = max_range
-    for oxmin, oxmax, oymin, oymax, table in obstacles.polygons:
+    for oxmin, oxmax, oymin, oymax, table in polygons:
         if cxmax < oxmin or cxmin > oxmax or cymax < oymin or cymin > oymax:
             continue
         for k in range(n):

@@ -18,6 +18,8 @@ import numpy as np
 CULL_PAD = 1e-9
 
 Edge = tuple[float, float, float, float]
+# (xmin, xmax, ymin, ymax, edge table) of one obstacle, boxes padded by CULL_PAD
+PolygonBox = tuple[float, float, float, float, list[tuple[float, ...]]]
 
 
 def crossing(a: Edge, b: Edge) -> float | None:
@@ -52,7 +54,7 @@ class ObstacleEdges:
     edge, (x3, y3, x43, y43, xmin, xmax, ymin, ymax) with the edge's own padded box."""
 
     def __init__(self, obstacles: Sequence[np.ndarray]) -> None:
-        self.polygons: list[tuple[float, float, float, float, list[tuple[float, ...]]]] = []
+        self.polygons: list[PolygonBox] = []
         self.edges: list[list[Edge]] = []
         for poly in obstacles:
             edges = polygon_edges(poly)
@@ -65,3 +67,9 @@ class ObstacleEdges:
             ys = [p[1] for p in edges]
             self.polygons.append((min(xs) - CULL_PAD, max(xs) + CULL_PAD, min(ys) - CULL_PAD,
                                   max(ys) + CULL_PAD, table))
+
+    def near(self, x: float, y: float, reach: float) -> list[PolygonBox]:
+        """The obstacles whose padded box meets the square of half-side `reach` around (x, y): everything
+        a body lying within `reach` of (x, y) could touch."""
+        return [p for p in self.polygons
+                if not (x + reach < p[0] or x - reach > p[1] or y + reach < p[2] or y - reach > p[3])]

@@ -41,7 +41,7 @@ def problems(collides) -> list:
 def simiam_fast(plate, obstacles):
     xs = [p[0] for p in plate]
     ys = [p[1] for p in plate]
-    return plate_collides(xs, ys, ObstacleEdges(obstacles))
+    return plate_collides(xs, ys, ObstacleEdges(obstacles).polygons)
 
 
 def simiam_exact(plate, obstacles):

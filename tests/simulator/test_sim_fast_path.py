@@ -28,10 +28,10 @@ def test_fast_equals_exact(world, x, y, theta):
     pose = (x, y, theta)
     xs, ys = transform_fast(pose, BASE_PLATE)
     plate = list(zip(xs, ys, strict=True))
-    assert plate_collides(xs, ys, obstacles) == plate_collides_exact(plate, obstacles)
+    assert plate_collides(xs, ys, obstacles.polygons) == plate_collides_exact(plate, obstacles)
     for cone in CONES:
         xs, ys = transform_fast(pose, cone)
-        fast = cone_range(xs, ys, obstacles, 0.04, 0.3)
+        fast = cone_range(xs, ys, obstacles.polygons, 0.04, 0.3)
         exact = cone_range_exact(list(zip(xs, ys, strict=True)), obstacles, 0.04, 0.3)
         assert fast == exact
 
@@ -44,11 +44,29 @@ def test_fast_equals_exact_near_walls():
         for j in range(12):
             pose = (-0.75 + 0.025 * i, 0.05 + 0.01 * j, 0.5 * j)
             xs, ys = transform_fast(pose, BASE_PLATE)
-            assert plate_collides(xs, ys, obstacles) == plate_collides_exact(
+            assert plate_collides(xs, ys, obstacles.polygons) == plate_collides_exact(
                 list(zip(xs, ys, strict=True)), obstacles)
             for cone in CONES:
                 cx, cy = transform_fast(pose, cone)
-                fast = cone_range(cx, cy, obstacles, 0.04, 0.3)
+                fast = cone_range(cx, cy, obstacles.polygons, 0.04, 0.3)
                 hits += fast < 0.3
                 assert fast == cone_range_exact(list(zip(cx, cy, strict=True)), obstacles, 0.04, 0.3)
     assert hits > 100  # the sweep really sees obstacles
+
+
+SIM_WORLDS = {name: load_world(name) for name in ("week4", "final")}
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.sampled_from(sorted(SIM_WORLDS)), coord, coord, heading)
+def test_simulator_culling_equals_exact(world, x, y, theta):
+    """The Simulator's per-step candidate selection (ObstacleEdges.near) drops nothing."""
+    from simiam.simulator import ConstantBrain, Simulator
+
+    sim = Simulator(SIM_WORLDS[world], ConstantBrain(0, 0), SPEC, start=(x, y, theta))
+    obstacles = WORLDS[world]
+    xs, ys = transform_fast((x, y, theta), BASE_PLATE)
+    assert sim.touches_obstacle() == plate_collides_exact(list(zip(xs, ys, strict=True)), obstacles)
+    for i, cone in enumerate(CONES):
+        cx, cy = transform_fast((x, y, theta), cone)
+        assert sim.ir_range[i] == cone_range_exact(list(zip(cx, cy, strict=True)), obstacles, 0.04, 0.3)

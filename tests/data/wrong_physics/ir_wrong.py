@@ -19,7 +19,7 @@ def centre_ray(pose):
         ray = [mount[:2], (mount[0] + 0.3 * math.cos(mount[2]), mount[1] + 0.3 * math.sin(mount[2]))]
         xs, ys = transform_fast(pose, ray)
         # a degenerate 2-vertex "polygon": the ray and its way back
-        d = cone_range(xs, ys, OBSTACLES, 0.04, 0.3)
+        d = cone_range(xs, ys, OBSTACLES.polygons, 0.04, 0.3)
         ranges.append(d)
         raws.append(distance_to_raw(d, "week3"))
         apexes.append((xs[0], ys[0]))
@@ -31,7 +31,7 @@ def bankers_round(pose):
     ranges, raws, apexes = [], [], []
     for mount in SPEC.ir_mounts:
         xs, ys = transform_fast(pose, mounted_cone(mount, 0.3, SPEC.ir_spread))
-        d = cone_range(xs, ys, OBSTACLES, 0.0, 0.3)
+        d = cone_range(xs, ys, OBSTACLES.polygons, 0.0, 0.3)
         ranges.append(d)
         raws.append(min(max(round(ir_voltage(d) * 1000 / 3), 133), 917))
         apexes.append((xs[0], ys[0]))
@@ -45,7 +45,7 @@ def mirrored_mounts(pose):
               (0.0613, -0.0244, -math.pi / 4), (-0.0474, -0.0534, -math.pi / 2)]
     for mount in mounts:
         xs, ys = transform_fast(pose, mounted_cone(mount, 0.3, SPEC.ir_spread))
-        d = cone_range(xs, ys, OBSTACLES, 0.04, 0.3)
+        d = cone_range(xs, ys, OBSTACLES.polygons, 0.04, 0.3)
         ranges.append(d)
         raws.append(distance_to_raw(d, "week3"))
         apexes.append((xs[0], ys[0]))
