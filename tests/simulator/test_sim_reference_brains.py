@@ -60,3 +60,34 @@ def test_closed_loop_recordings_reproduce(name):
 def test_replay_catches_a_loop_without_the_one_step_delay():
     res = replay(wrong("simulator_wrong_order").NoDelaySimulator, "gotogoal_closed_loop.csv")
     assert res["max_pose_error"] > 1e-6 or res["bad"]
+
+
+def ensure_w_mismatches(limit_after_week3: bool = True) -> tuple[int, int]:
+    """The reference brains' ensure_w against ensure_w.csv (every version and row): (rows, mismatches)."""
+    import dataclasses
+
+    from simiam.reference_brains import ReferenceSupervisor
+    from simiam.robot.quickbot import limit_speeds
+
+    with (DATA / "golden" / "ensure_w.csv").open(newline="") as f:
+        rows = list(csv.DictReader(f))
+    bad = 0
+    for r in rows:
+        week4 = r["version"] == "week4"
+        spec = dataclasses.replace(spec_for_week(4 if week4 else 3), max_vel=float(r["vel_max"]),
+                                   min_vel=float(r["vel_min"]))
+        vel_r, vel_l = ReferenceSupervisor(spec, ensure="week4" if week4 else "week3").ensure_w(
+            float(r["v"]), float(r["w"]))
+        if not week4 and limit_after_week3:  # the week-3 code calls limit_speeds inside ensure_w
+            vel_r, vel_l = limit_speeds(vel_r, vel_l, spec.max_vel, spec.min_vel)
+        bad += (vel_r, vel_l) != (float(r["vel_r"]), float(r["vel_l"]))
+    return len(rows), bad
+
+
+def test_reference_ensure_w_is_bit_exact():
+    rows, bad = ensure_w_mismatches()
+    assert rows > 0 and bad == 0
+
+
+def test_ensure_w_check_catches_a_missing_limit():
+    assert ensure_w_mismatches(limit_after_week3=False)[1] > 0
