@@ -77,7 +77,10 @@ class LocalBrain:
 def _plain(x):
     """A real number as a Python float (numpy scalars included); anything else unchanged for validation."""
     if isinstance(x, numbers.Real) and not isinstance(x, bool):
-        return float(x)
+        try:
+            return float(x)
+        except Exception:  # noqa: BLE001 - a hostile "number": let the simulator's validation reject it
+            return x
     return x
 
 
