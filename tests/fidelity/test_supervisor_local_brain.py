@@ -1,0 +1,67 @@
+"""LocalBrain and the Supervisor base: the Seam-1 command, settings overrides, at_goal on the estimate."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from simiam.control.local_brain import LocalBrain
+from simiam.course.loader import load_submission
+from simiam.course.weeks import week_config
+from simiam.simulator import validate_command
+
+ROOT = Path(__file__).resolve().parents[2]
+READINGS = {"t": 0.033, "dt": 0.033, "ticks": [0, 0], "ir_raw": [133, 133, 133, 133, 133]}
+
+
+def _brain(week: int, settings: dict | None = None) -> LocalBrain:
+    sub = load_submission(ROOT / f"solutions/week{week}", week)
+    assert sub.ok, sub.errors
+    return LocalBrain(sub, week_config(week), settings)
+
+
+def test_command_has_the_seam_shape_and_plain_floats():
+    cmd = _brain(4).step(READINGS)
+    assert set(cmd) == {"vel_r", "vel_l", "estimate", "state", "debug"}
+    assert set(cmd["debug"]) == {"v", "w", "theta_g", "u_ao", "ir_points_wf"}
+    assert cmd["state"] == "avoid_obstacles"
+    assert type(cmd["vel_r"]) is float and type(cmd["vel_l"]) is float  # not numpy scalars
+    assert all(type(c) is float for c in cmd["estimate"])
+    assert len(cmd["debug"]["u_ao"]) == 2 and [len(r) for r in cmd["debug"]["ir_points_wf"]] == [5, 5]
+    assert validate_command(cmd)["vel_r"] == cmd["vel_r"]
+
+
+def test_settings_override_the_students_values():
+    brain = _brain(4, {"v": 0.2, "goal": [1, 1], "d_stop": 0.1, "theta_d": 0.3, "state": "go_to_goal",
+                       "gains": {"go_to_goal": {"Kp": 4, "Ki": 0.01, "Kd": 0.01}}})
+    sup = brain.supervisor
+    assert (sup.v, sup.goal, sup.d_stop, sup.theta_d) == (0.2, (1, 1), 0.1, 0.3)
+    assert sup.current_state == "go_to_goal"
+    assert (sup.controllers["go_to_goal"].Kp, sup.controllers["go_to_goal"].Kd) == (4, 0.01)
+    cmd = brain.step(READINGS)
+    assert cmd["debug"]["theta_g"] == pytest.approx(math.pi / 4)
+    assert cmd["debug"]["v"] == 0.2 and cmd["debug"]["u_ao"] is None
+
+
+def test_top_level_gains_are_accepted_and_unknown_controllers_refused():
+    assert _brain(3, {"go_to_goal": {"Kp": 7}}).supervisor.controllers["go_to_goal"].Kp == 7
+    with pytest.raises(ValueError, match="no controller"):
+        _brain(3, {"gains": {"follow_wall": {"Kp": 1}}})
+    with pytest.raises(ValueError, match="no state"):
+        _brain(3, {"state": "follow_wall"})
+
+
+def test_at_goal_uses_the_estimate_not_the_true_pose():
+    """Start the estimate at the goal: the week-3 supervisor stops at once, whatever the true pose."""
+    sub = load_submission(ROOT / "solutions/week3", 3)
+    brain = LocalBrain(sub, week_config(3), {"goal": (0.5, 0.5)}, start=(0.5, 0.5, 0.0))
+    assert brain.step(READINGS)["state"] == "stop"
+    assert _brain(3, {"goal": (0.5, 0.5)}).step(READINGS)["state"] == "go_to_goal"
+
+
+def test_stop_state_reports_no_reference_heading():
+    brain = _brain(3, {"state": "stop"})
+    cmd = brain.step(READINGS)
+    assert cmd["debug"]["theta_g"] is None and (cmd["vel_r"], cmd["vel_l"]) == (0.0, 0.0)
