@@ -126,7 +126,7 @@ def _bwrap_base(as_root: bool, tmp_bytes: int) -> list[str]:
             args += ["--ro-bind", top, top]
     args += ["--ro-bind-try", "/etc/ld.so.cache", "/etc/ld.so.cache",
              "--proc", "/proc", "--dev", "/dev", "--remount-ro", "/dev",
-             "--size", str(tmp_bytes), "--tmpfs", "/tmp"]
+             "--size", str(tmp_bytes), "--perms", "1777", "--tmpfs", "/tmp"]
     return args
 
 
@@ -203,12 +203,18 @@ def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int,
         return WorkerPlan(BWRAP, argv, env, uid, NOTES[BWRAP], "/", config)
     uid = pick_uid() if as_root else None
     config.update(submission=str(submission), uid=uid, gid=uid)
-    if uid is not None:
-        env_note = "" if all(_readable_by_others(p) for p in config["paths"] if os.path.exists(p)) else \
-            " (the Python environment is private to root, so only modules preloaded before the drop import)"
-        note = NOTES[SUBPROCESS].format(uid=f" under its own unprivileged uid{env_note}")
-    else:
-        note = NOTES[SUBPROCESS].format(uid=" under your own user (the process limit counts all your "
-                                             "processes)")
     argv = [*python, worker_py, json.dumps(config)]
-    return WorkerPlan(SUBPROCESS, argv, env, uid, note, str(submission), config)
+    return WorkerPlan(SUBPROCESS, argv, env, uid, describe(SUBPROCESS), str(submission), config)
+
+
+def describe(mode: str) -> str:
+    """One or two sentences on what holds in `mode` on this machine, for the result and the report."""
+    if mode == BWRAP:
+        return NOTES[BWRAP]
+    if os.geteuid() != 0:
+        return NOTES[SUBPROCESS].format(uid=" under your own user (the process limit counts all your "
+                                             "processes, and processes that leave the session may survive)")
+    private = not all(_readable_by_others(p) for p in python_paths() if os.path.exists(p))
+    env_note = " (the Python environment is private to root here, so only modules preloaded before the " \
+               "drop can be imported)" if private else ""
+    return NOTES[SUBPROCESS].format(uid=f" under its own unprivileged uid{env_note}")

@@ -45,7 +45,7 @@ class StudentSession:
         self._outputs: list[CappedText] = []
         self._load: dict | None = None
         self._load_death: WorkerDied | None = None
-        self.isolation_note = ""
+        self.isolation_note = isolation.describe(self.isolation)
         self.seconds_used = 0.0      # wall time of calls, counted against limits.total_seconds
         self.calls = 0
         self.starts = 0
@@ -97,7 +97,6 @@ class StudentSession:
             self.isolation, self.spliced_dir,
             dict(self._config, rlimits=self.limits.for_worker(self.limits.total_seconds - self.seconds_used)),
             tmp_bytes=self.limits.tmp_bytes, extra_paths=self._extra_paths, probes_file=self._probes_file)
-        self.isolation_note = plan.note
         self._worker = WorkerProcess(plan, self.limits.output_bytes)
         self.starts += 1
         try:

@@ -35,7 +35,10 @@ def _drop_privileges(uid: int, gid: int) -> None:
 # environment (subprocess mode with the interpreter under a private home directory).
 _PRELOAD = ("math", "cmath", "random", "statistics", "functools", "itertools", "collections", "copy",
             "time", "json", "dataclasses", "typing", "enum", "abc", "numbers", "operator", "re", "warnings",
-            "traceback", "inspect", "numpy", "simiam.control", "simiam.course.weeks", "simiam.course.loader",
+            "traceback", "inspect", "signal", "socket", "select", "subprocess", "threading", "struct",
+            "io", "string", "textwrap", "heapq", "bisect", "decimal", "fractions", "datetime", "array",
+            "queue", "contextlib", "encodings.idna", "numpy", "simiam.control", "simiam.course.weeks",
+            "simiam.course.loader",
             "grader.sandbox.limits", "grader.sandbox.worker_loop")
 
 

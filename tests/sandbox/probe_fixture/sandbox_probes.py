@@ -1,7 +1,7 @@
 """Probes for the sandbox tests (run inside the worker, like grader/probes.py).
 
-`attack(sub, ...)` calls `attack(**args)` in the submission's differential_drive.py; `uni_to_diff` calls the
-student's function with a stand-in robot.
+`attack(sub, fn="attack", ...)` calls `fn(**args)` in the submission's differential_drive.py;
+`uni_to_diff` calls the student's function with a stand-in robot.
 """
 
 from types import SimpleNamespace
@@ -17,8 +17,8 @@ def uni_to_diff(sub, v: float, w: float):
     return sub.module("differential_drive").uni_to_diff(_robot(), v, w)
 
 
-def attack(sub, **args):
-    return sub.module("differential_drive").attack(**args)
+def attack(sub, fn: str = "attack", **args):
+    return getattr(sub.module("differential_drive"), fn)(**args)
 
 
 def echo(sub, value=None):

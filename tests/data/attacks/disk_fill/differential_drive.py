@@ -1,0 +1,30 @@
+"""Attack: write a 100 MB file."""
+
+
+
+def uni_to_diff(robot, v, w):
+    R = robot.wheel_radius
+    L = robot.wheel_base_length
+    return (2 * v + w * L) / (2 * R), (2 * v - w * L) / (2 * R)
+
+
+def diff_to_uni(robot, vel_r, vel_l):
+    R = robot.wheel_radius
+    L = robot.wheel_base_length
+    return R / 2 * (vel_r + vel_l), R / L * (vel_r - vel_l)
+
+
+class _Robot:
+    wheel_radius = 0.0325
+    wheel_base_length = 0.09925
+
+
+def honest():
+    return uni_to_diff(_Robot(), 0.1, 0.5)
+
+
+def attack(path='/tmp/simiam-fill', **args):
+    with open(path, 'wb') as f:
+        for _ in range(100):
+            f.write(b'x' * 2 ** 20)
+    return 'written'

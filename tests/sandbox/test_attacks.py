@@ -1,0 +1,304 @@
+"""The attack suite, at the session level: each attack submission gets only what its honest behaviour earns
+(the honest value, or a clear error) within the time limits, and the grading process and every other file
+survive. Each test runs under bubblewrap and as a plain subprocess; the ones that only hold in a real
+sandbox say so. End-to-end scores are in test_attacks_graded.py.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import socket
+import sys
+import time
+import uuid
+from pathlib import Path
+
+import numpy
+import pytest
+from conftest import AS_ROOT, HONEST, attack, honest_probe
+
+from grader.sandbox import validate
+from grader.sandbox.errors import StudentError, StudentTimeout, WorkerDied
+from grader.sandbox.isolation import BWRAP
+from grader.sandbox.limits import Limits
+from grader.sandbox.runner import _uid_alive
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def _uid(session) -> int | None:
+    return session._worker.plan.uid if session._worker else None
+
+
+def test_honest_submission_answers(open_session):
+    session = open_session("_honest")
+    assert session.load()["errors"] == []
+    assert honest_probe(session) == pytest.approx(HONEST)
+
+
+def test_sys_exit_at_import_is_a_load_error(open_session):
+    session = open_session("exit_at_import")
+    errors = session.load()["errors"]
+    assert [e["file"] for e in errors] == ["differential_drive.py"]
+    assert "SystemExit" in errors[0]["message"]
+    with pytest.raises(StudentError, match="differential_drive.py was not loaded"):
+        attack(session)
+
+
+def test_os_exit_at_import_fails_every_call_without_restarting(open_session):
+    session = open_session("os_exit_at_import")
+    with pytest.raises(WorkerDied, match="imported.*exit status 0"):
+        session.load()
+    with pytest.raises(WorkerDied, match="imported"):
+        honest_probe(session)
+    assert session.starts == 1
+
+
+def test_sys_exit_mid_run_is_a_student_error_with_the_line(open_session):
+    session = open_session("exit_mid_run")
+    with pytest.raises(StudentError, match=r"sys.exit\(0\)") as caught:
+        attack(session)
+    assert (caught.value.type_name, caught.value.file) == ("SystemExit", "differential_drive.py")
+    source = (REPO / "tests/data/attacks/exit_mid_run/differential_drive.py").read_text().splitlines()
+    assert source[caught.value.line - 1].strip() == "sys.exit(0)"
+    assert honest_probe(session) == pytest.approx(HONEST)
+    assert session.starts == 1
+
+
+def test_os_exit_mid_run_kills_the_worker_and_the_next_call_restarts(open_session):
+    session = open_session("os_exit_mid_run")
+    with pytest.raises(WorkerDied, match="exit status 0"):
+        attack(session)
+    assert honest_probe(session) == pytest.approx(HONEST)
+    assert session.starts == 2
+
+
+def test_killing_the_parent_leaves_the_grader_alive(open_session):
+    session = open_session("kill_parent")
+    result = attack(session)  # were the worker's parent the grader and killable, pytest would be dead
+    assert result == pytest.approx(HONEST)
+    assert os.getppid() != 1
+
+
+@pytest.mark.parametrize("kind, name", [("custom", "Boom"), ("interrupt", "KeyboardInterrupt"),
+                                        ("generator", "GeneratorExit")])
+def test_base_exceptions_become_student_errors(open_session, kind, name):
+    session = open_session("base_exception")
+    with pytest.raises(StudentError) as caught:
+        attack(session, kind=kind)
+    assert caught.value.type_name == name and caught.value.file == "differential_drive.py"
+    assert honest_probe(session) == pytest.approx(HONEST)
+
+
+def test_printed_fake_results_are_only_shown_never_parsed(open_session):
+    session = open_session("fake_output")
+    assert attack(session) == pytest.approx(HONEST)
+    output = session.output()
+    assert "100/100" in output and '"max_score": 100' in output
+
+
+def test_fake_answers_on_the_channel_are_caught_by_the_next_id(open_session):
+    session = open_session("fake_output")
+    value = attack(session, fn="forge_channel")
+    # The forged line can only stand in for the student's own return value (the grader validates it)...
+    assert value in ([100, 100], pytest.approx(HONEST))
+    # ...and the real answer then arrives with a stale id: a protocol violation, the worker is replaced.
+    with pytest.raises(WorkerDied, match="does not match"):
+        honest_probe(session)
+    assert honest_probe(session) == pytest.approx(HONEST)
+
+
+def test_forged_files_and_detached_writers(open_session, shared_dir, mode):
+    out = shared_dir / "reports"
+    out.mkdir()
+    (out / "week1.json").write_text('{"score": 3}')
+    canary = shared_dir / "world-writable"
+    canary.mkdir()
+    canary.chmod(0o777)
+    session = open_session("forge_files")
+    written = attack(session, targets=[str(out), str(canary)], delay=0.8)
+    uid = _uid(session)
+    assert not any(w.startswith(str(out)) for w in written)  # the output folder is never writable
+    if mode == BWRAP:
+        assert written == []                                 # nothing outside is even visible
+    session.close()
+    time.sleep(1.2)  # the detached writer would have woken up by now
+    assert sorted(p.name for p in out.iterdir()) == ["week1.json"]
+    assert (out / "week1.json").read_text() == '{"score": 3}'
+    assert not [p for p in canary.iterdir() if p.name.startswith("later-")]
+    if uid is not None:
+        assert not _uid_alive(uid)
+
+
+def test_monkeypatching_stays_inside_the_worker(open_session):
+    session = open_session("monkeypatch")
+    value = attack(session)
+    # The patched to_json mangled the answer inside the worker; what came back is still plain JSON,
+    # checked by the grader's own (unpatched) code.
+    with pytest.raises(validate.BadValue, match="a list of 2, expected a number"):
+        validate.as_float_list(value, 2, "uni_to_diff returned")
+    assert math.sqrt(4.0) == 2.0
+    assert not numpy.allclose(1.0, 2.0)
+    with pytest.raises(validate.BadValue):
+        validate.as_float("100")
+    from simiam.robot.quickbot import spec_for_week
+
+    assert spec_for_week(3) is not None
+
+
+@pytest.mark.parametrize("kind, message", [("eq", "a Liar object"), ("float_subclass", "a LyingFloat object"),
+                                           ("huge_int", "integer too large"), ("deep", "nested more than")])
+def test_values_without_json_form_are_refused_by_name(open_session, kind, message):
+    session = open_session("evil_objects")
+    with pytest.raises(StudentError, match=message) as caught:
+        attack(session, kind=kind)
+    assert "cannot be sent to the grader" in str(caught.value)
+
+
+@pytest.mark.parametrize("kind, message", [("nan", "NaN"), ("inf", "infinity")])
+def test_nonfinite_values_cross_and_fail_validation(open_session, kind, message):
+    session = open_session("evil_objects")
+    value = attack(session, kind=kind)
+    with pytest.raises(validate.BadValue, match=f"your uni_to_diff returned \\(item 1\\) {message}"):
+        validate.as_float_list(value, 2, "your uni_to_diff returned")
+
+
+def test_huge_floats_are_numbers_far_from_the_answer(open_session):
+    session = open_session("evil_objects")
+    value = validate.as_float_list(attack(session, kind="huge_float"), 2)
+    assert value == [1e308, -1e308] and value != pytest.approx(HONEST)
+
+
+def test_an_oversized_answer_breaks_the_protocol(open_session):
+    session = open_session("evil_objects")
+    with pytest.raises(WorkerDied, match="exceeds"):
+        attack(session, kind="big_string")
+
+
+def test_reading_solutions_and_other_files(open_session, mode):
+    session = open_session("read_solutions")
+    paths = [str(REPO / "solutions" / "week1" / "differential_drive.py"), str(REPO / "pyproject.toml"),
+             "/work/shared/contract.md", str(REPO / "tests" / "data" / "attacks" / "_honest" / "quickbot.py")]
+    assert Path(paths[1]).exists()
+    if mode == BWRAP:
+        with pytest.raises(StudentError, match="No such file"):
+            attack(session, paths=paths)
+    else:  # documented: without bubblewrap, world-readable files stay readable
+        assert "can read" in session.isolation_note
+        assert paths[1] in attack(session, paths=paths)
+
+
+def test_network(open_session, mode):
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(1)
+    server.settimeout(0.2)
+    session = open_session("network")
+    try:
+        if mode == BWRAP:
+            with pytest.raises(StudentError, match="Connection refused|unreachable"):
+                attack(session, port=server.getsockname()[1])
+            with pytest.raises(socket.timeout):
+                server.accept()
+        else:  # documented: no network isolation without bubblewrap
+            assert "has the network" in session.isolation_note
+            assert attack(session, port=server.getsockname()[1]) == "connected"
+    finally:
+        server.close()
+
+
+@pytest.mark.parametrize("fn", ["attack", "attack_numpy"])
+def test_allocating_gigabytes_is_a_memory_error(open_session, fn):
+    session = open_session("allocate")
+    with pytest.raises(StudentError, match="Memory"):
+        attack(session, fn=fn, gb=4)
+    assert honest_probe(session) == pytest.approx(HONEST)
+
+
+@pytest.mark.skipif(not AS_ROOT, reason="a dedicated uid needs root; as a user the limit counts all of them")
+def test_fork_bomb_is_contained_and_killed(open_session):
+    limits = Limits(call_seconds=5.0, processes=32)
+    session = open_session("fork_bomb", limits)
+    started = attack(session, n=500)
+    uid = _uid(session)
+    print(f"fork bomb: {started} of 500 forks succeeded under RLIMIT_NPROC={limits.processes}")
+    assert started < limits.processes
+    session.close()
+    assert not _uid_alive(uid)
+
+
+def test_printing_100_mb_keeps_only_the_first_bytes(open_session):
+    session = open_session("flood_output", Limits(call_seconds=10.0, output_bytes=64 * 1024))
+    assert attack(session, mb=100) == pytest.approx(HONEST)
+    output = session.output()
+    assert len(output) < 64 * 1024 + 100
+    assert "more bytes of output not kept" in output
+    assert session._worker.output.total >= 100 * 2**20
+
+
+def test_infinite_loop_times_out_and_the_worker_is_replaced(open_session):
+    session = open_session("infinite_loop", Limits(call_seconds=1.0))
+    began = time.monotonic()
+    with pytest.raises(StudentTimeout, match="infinite loop"):
+        attack(session)
+    print(f"infinite loop stopped after {time.monotonic() - began:.2f} s (limit 1 s)")
+    assert honest_probe(session) == pytest.approx(HONEST)
+    assert session.starts == 2
+
+
+def test_sleeping_past_the_limit_until_the_budget_is_spent(open_session):
+    session = open_session("sleep", Limits(call_seconds=0.6, total_seconds=1.5))
+    with pytest.raises(StudentTimeout):
+        attack(session)
+    with pytest.raises(StudentTimeout):
+        attack(session)
+    with pytest.raises(StudentTimeout, match="used up its total time"):
+        attack(session)
+    with pytest.raises(StudentTimeout, match="used up its total time"):
+        honest_probe(session)
+    assert session.seconds_used < 2.5
+
+
+def test_robot_limits_changed_in_the_worker_stay_there(open_session):
+    from simiam.robot.quickbot import spec_for_week
+
+    before = spec_for_week(3).max_vel
+    session = open_session("robot_limits")
+    attack(session)
+    assert spec_for_week(3).max_vel == before < 1e9
+
+
+def test_large_files_hit_the_file_size_limit(open_session):
+    path = f"/tmp/simiam-fill-{uuid.uuid4().hex}"
+    session = open_session("disk_fill")
+    try:
+        with pytest.raises(StudentError, match="File too large|No space left"):
+            attack(session, path=path)
+    finally:
+        if os.path.exists(path):
+            assert os.path.getsize(path) <= 8 * 2**20
+            os.unlink(path)
+
+
+def test_the_worker_sees_no_secrets_and_no_repository(open_session, mode, monkeypatch):
+    monkeypatch.setenv("SIMIAM_GRADER_SECRET", "s3cret")
+    session = open_session("snoop")
+    paths = [str(REPO / "solutions"), str(REPO / "simiam"), "/work/shared", str(REPO / "tests" / "data")]
+    seen = attack(session, paths=paths)
+    assert "SIMIAM_GRADER_SECRET" not in seen["environ"] and "s3cret" not in seen["cmdline"]
+    assert set(seen["environ"]) <= {"PATH", "HOME", "LANG", "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS",
+                                    "MKL_NUM_THREADS"}
+    if AS_ROOT:
+        assert seen["uid"] != 0
+    if mode == BWRAP:
+        assert seen["exists"] == {paths[0]: False, paths[1]: True, paths[2]: False, paths[3]: False}
+        assert seen["hostname"] == "sandbox" and max(seen["pids"]) < 10
+        assert seen["cwd"] == "/submission"
+    assert sys.executable  # the grader itself is untouched
+
+
+def test_probes_outside_the_allow_list_are_refused(open_session):
+    session = open_session("_honest")
+    with pytest.raises(StudentError, match="no probe named 'not_allowed'"):
+        session.call("probe", name="not_allowed", args={})
