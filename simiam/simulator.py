@@ -53,7 +53,14 @@ class ConstantBrain:
 
 
 def _real(x: Any) -> bool:
-    return type(x) in (int, float) and math.isfinite(x)
+    """A finite int or float (bool and numpy scalars are not), small enough to become a float."""
+    t = type(x)
+    if t is float:
+        return x - x == 0.0  # false for inf and nan
+    return t is int and -1e308 < x < 1e308
+
+
+_FLOAT = {float}
 
 
 def _finite_or_none(x: Any) -> float | None:
@@ -73,8 +80,9 @@ def _points_or_none(p: Any) -> list[list[float]] | None:
     for row in p:
         if not (isinstance(row, (list, tuple)) and len(row) == 5):
             return None
-        if all(type(c) is float for c in row):  # the common case: one finiteness test for the row
-            if not math.isfinite(row[0] + row[1] + row[2] + row[3] + row[4]):
+        if set(map(type, row)) == _FLOAT:  # the common case: one finiteness test for the whole row
+            total = row[0] + row[1] + row[2] + row[3] + row[4]
+            if total - total != 0.0:
                 return None
             out.append(list(row))
         elif all(_real(c) for c in row):
