@@ -32,7 +32,7 @@ EXIT_OK, EXIT_REFUSED, EXIT_USAGE = 0, 1, 2
 class BlockMove:
     """What happened to one block of this week's folder."""
 
-    file: str
+    file: str  # the path in this week's folder
     block: str  # "GoToGoal.execute (block 2)"
     moved: bool
     why: str
@@ -67,7 +67,7 @@ class Migration:
             lines = [head, "Refused: nothing was changed. Fix these and run it again:"]
             return "\n".join(lines + [f"  {e}" for e in self.errors])
         lines = [head, *map(str, self.moves), *(f"  note   {n}" for n in self.notes)]
-        moved = sorted({m.file for m in self.moves if m.moved})
+        moved = sorted(self.texts)
         if not moved:
             lines.append("Nothing to carry: this week's folder is left as it is.")
         elif dry_run:
@@ -164,7 +164,7 @@ def plan(week: int, source: Path, target: Path) -> Migration:
         bodies: dict[int, str] = {}
         for t in blocks:
             spec = placeholder_for(name, t.scope, t.occurrence)
-            row = (name, t.describe())
+            row = (label, t.describe())
             if spec is None or spec.week == week:
                 mig.moves.append(BlockMove(*row, False, "new this week: yours to write", t.start_line))
                 continue
