@@ -1,0 +1,304 @@
+"""Week 4 checks: the transformation matrix, the IR points in the robot and world frames, the sensor gains,
+u_ao, and 60 s of avoiding obstacles in the week-4 world (and, hidden, from start poses drawn per seed).
+
+apply_sensor_geometry and u_ao are probed with a correct get_transformation_matrix put in place of the
+student's, so a mistake in the matrix costs the matrix check (and the runs), not every check.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+import numpy as np
+from hypothesis import strategies as st
+
+from grader import reference as ref
+from grader import scenarios
+from grader.checks import Check, Context, Mismatch, Outcome
+from grader.checks.answers import fmt, matrix
+from grader.properties import run_property
+from simiam.world import World, load_world
+
+AO = ("avoid_obstacles.py",)
+ALL = (
+    "differential_drive.py",
+    "quickbot.py",
+    "go_to_angle.py",
+    "go_to_goal.py",
+    "avoid_obstacles.py",
+    "qb_supervisor.py",
+)
+V = 0.15  # the scenario's speed (the original's 0.9 is capped by ensure_w and crashes its own AO)
+SECONDS = 60.0
+MIN_PATH = 1.0  # "really moving": at least this many metres driven in the run
+POSE = [0.3, -0.2, 0.7]
+
+_coord = st.floats(-1.5, 1.5)
+_angle = st.floats(-math.pi, math.pi)
+_distance = st.floats(0.04, 0.3)
+
+
+def _pose_words(x: float, y: float, theta: float) -> str:
+    return f"({fmt(x)}, {fmt(y)}, {fmt(theta)})"
+
+
+def transformation(ctx: Context) -> Outcome:
+    def case(ctx: Context, x: float, y: float, theta: float) -> None:
+        got = matrix(
+            ctx.probe("transformation_matrix", x=x, y=y, theta=theta),
+            3,
+            3,
+            f"get_transformation_matrix{_pose_words(x, y, theta)}",
+        )
+        want = ref.transformation_matrix(x, y, theta)
+        for i in range(3):
+            for j in range(3):
+                if abs(got[i][j] - want[i][j]) > 1e-6:
+                    raise Mismatch(
+                        f"get_transformation_matrix{_pose_words(x, y, theta)}: row {i + 1}, column "
+                        f"{j + 1} was {fmt(got[i][j])}, expected {fmt(want[i][j])} "
+                        "([cos -sin x], [sin cos y], [0 0 1])"
+                    )
+
+    return run_property(
+        ctx,
+        "week4.transform.matrix",
+        {"x": _coord, "y": _coord, "theta": _angle},
+        case,
+        examples=[{"x": 0.0, "y": 0.0, "theta": 0.5}, {"x": 1.0, "y": -2.0, "theta": 0.0}],
+        passed="T(x, y, theta) is right",
+    )
+
+
+def _geometry(ctx: Context, distances: list, pose: list) -> tuple[list, list]:
+    answer = ctx.probe("sensor_geometry", distances=distances, pose=pose)
+    if not isinstance(answer, list) or len(answer) != 2:
+        raise Mismatch(
+            "apply_sensor_geometry must return two 3x5 matrices (ir_distances_rf, ir_distances_wf)"
+        )
+    where = f"with distances {', '.join(fmt(d) for d in distances)} at pose {_pose_words(*pose)}"
+    return (
+        matrix(answer[0], 3, 5, f"{where} your ir_distances_rf"),
+        matrix(answer[1], 3, 5, f"{where} your ir_distances_wf"),
+    )
+
+
+def _frame_check(frame: str):
+    def case(ctx: Context, distances: list, x: float, y: float, theta: float) -> None:
+        pose = [x, y, theta]
+        rf, wf = _geometry(ctx, distances, pose)
+        if frame == "robot":
+            got, want = rf, ref.sensor_points(ctx.spec, distances, pose)[0]
+            hint = "T(x_s, y_s, theta_s) of the sensor's mount times (d, 0, 1)"
+        else:  # from the student's own robot-frame points, so a robot-frame mistake is not counted twice
+            got, want = (
+                wf,
+                [ref.apply(ref.transformation_matrix(*pose), (rf[0][i], rf[1][i])) for i in range(5)],
+            )
+            hint = "T(x, y, theta) of the robot's pose times the robot-frame point"
+        for i in range(5):
+            wx, wy = want[i]
+            if abs(got[0][i] - wx) > 1e-6 or abs(got[1][i] - wy) > 1e-6 or abs(got[2][i] - 1) > 1e-6:
+                raise Mismatch(
+                    f"with IR distance {fmt(distances[i])} on sensor {i + 1} and the robot at "
+                    f"{_pose_words(*pose)} your {frame}-frame point was ({fmt(got[0][i])}, "
+                    f"{fmt(got[1][i])}, {fmt(got[2][i])}), expected ({fmt(wx)}, {fmt(wy)}, 1): {hint}"
+                )
+
+    strategies = {
+        "distances": st.lists(_distance, min_size=5, max_size=5),
+        "x": _coord,
+        "y": _coord,
+        "theta": _angle,
+    }
+
+    def run(ctx: Context) -> Outcome:
+        return run_property(
+            ctx,
+            f"week4.sensor_geometry.{frame}_frame",
+            strategies,
+            case,
+            examples=[{"distances": [0.21, 0.3, 0.3, 0.21, 0.3], "x": 0.1, "y": -0.1, "theta": -1.578}],
+            passed=f"the IR points in the {frame} frame are right",
+        )
+
+    run.__name__ = f"{frame}_frame"
+    return run
+
+
+def _u_ao(ctx: Context, distances: list) -> tuple[np.ndarray, np.ndarray]:
+    """u_ao and the vectors from the robot to the student's own world-frame IR points."""
+    answer = ctx.probe("avoid_obstacles", distances=distances, pose=POSE, v=V)
+    if not isinstance(answer, dict):
+        raise Mismatch("AvoidObstacles.execute gave no answer")
+    where = f"with IR distances {', '.join(fmt(d) for d in distances)}"
+    if answer.get("u_ao") is None:
+        raise Mismatch(f"{where} AvoidObstacles kept no u_ao")
+    u_ao = np.array(matrix([answer.get("u_ao")], 1, 2, f"{where} your u_ao")[0])
+    wf = answer.get("ir_distances_wf")
+    points = np.array(
+        matrix(
+            wf,
+            len(wf) if isinstance(wf, list) and len(wf) in (2, 3) else 3,
+            5,
+            f"{where} your ir_distances_wf",
+        )
+    )
+    return u_ao, points[:2] - np.array([[POSE[0]], [POSE[1]]])
+
+
+_GAIN_PROBES = [
+    [0.3] * 5,
+    [0.1, 0.3, 0.3, 0.3, 0.3],
+    [0.3, 0.1, 0.3, 0.3, 0.3],
+    [0.3, 0.3, 0.1, 0.3, 0.3],
+    [0.3, 0.3, 0.3, 0.1, 0.3],
+    [0.3, 0.3, 0.3, 0.3, 0.1],
+]
+
+
+def symmetric_gains(ctx: Context) -> Outcome:
+    """The gains behind u_ao (solved from six readings): the same for sensors 1/5 and 2/4, not all 0."""
+    rows, rhs = [], []
+    for distances in _GAIN_PROBES:
+        u_ao, vectors = _u_ao(ctx, distances)
+        rows += [vectors[0], vectors[1]]
+        rhs += [u_ao[0], u_ao[1]]
+    gains, *_ = np.linalg.lstsq(np.array(rows), np.array(rhs), rcond=None)
+    residual = float(np.max(np.abs(np.array(rows) @ gains - np.array(rhs))))
+    details = {"sensor_gains": [float(g) for g in gains], "fit_residual": residual}
+    words = ", ".join(fmt(float(g)) for g in gains)
+    if residual > 1e-6 * max(1.0, float(np.max(np.abs(rhs)))):
+        return Outcome(
+            0.0, "u_ao is not a weighted sum of the vectors from the robot to the IR points", details
+        )
+    if np.max(np.abs(gains)) < 1e-9:
+        return Outcome(0.0, "your sensor_gains are all 0, so u_ao is always 0", details)
+    scale = float(np.max(np.abs(gains)))
+    if abs(gains[0] - gains[4]) > 1e-6 * scale or abs(gains[1] - gains[3]) > 1e-6 * scale:
+        return Outcome(
+            0.0,
+            f"your sensor gains are {words}: sensors 1 and 5, and 2 and 4, must weigh the same "
+            "(left and right alike)",
+            details,
+        )
+    return Outcome(1.0, f"sensor gains {words} are symmetric", details)
+
+
+def points_away(ctx: Context) -> Outcome:
+    """An obstacle close to one sensor turns u_ao away from that sensor's direction."""
+    free, _ = _u_ao(ctx, [0.3] * 5)
+    for i, mount in enumerate(ctx.spec.ir_mounts):
+        distances = [0.3] * 5
+        distances[i] = 0.06
+        u_ao, _ = _u_ao(ctx, distances)
+        heading = POSE[2] + mount[2]
+        towards = float(np.dot(u_ao - free, [math.cos(heading), math.sin(heading)]))
+        if towards >= -1e-9:
+            return Outcome(
+                0.0,
+                f"with an obstacle 0.06 m in front of sensor {i + 1} (the others reading 0.3) "
+                "u_ao did not turn away from it: each u_i must point from the robot to its IR "
+                "point, weighted by a positive gain",
+                {"sensor": i + 1, "toward_obstacle": towards},
+            )
+    return Outcome(1.0, "an obstacle in front of any sensor turns u_ao away from it")
+
+
+def _variant(world: World, turn: int, of: int, mirror: bool) -> World:
+    """The world mirrored in y (if asked) and rotated about the start by 2*pi*turn/of: the robot starts
+    facing another way, and its estimate still starts at (0, 0, 0) as the student's supervisor expects."""
+    theta = turn * 2 * math.pi / of
+    c, s = math.cos(theta), math.sin(theta)
+    moved = []
+    for poly in world.obstacles:
+        q = poly.copy()
+        if mirror:
+            q[:, 1] *= -1
+        moved.append(np.c_[c * q[:, 0] - s * q[:, 1], s * q[:, 0] + c * q[:, 1]])
+    label = f"week-4 world{' mirrored' if mirror else ''}, turned {360 * turn / of:g} degrees"
+    return World(label, moved)
+
+
+def _avoid(ctx: Context, check_id: str, world: World, label: str, seconds: float) -> tuple[bool, str, dict]:
+    settings = {"v": V, "state": "avoid_obstacles"}
+    r = scenarios.run(ctx, label, settings, seconds, world=world)
+    scenarios.keep(ctx, check_id, r)
+    length = r.metrics["path_length"]
+    details = {**r.metrics, "max_displacement": scenarios.max_displacement(r.trace), "problem": r.problem}
+    if r.problem:
+        return False, r.problem, details
+    if r.collision is not None:
+        return False, f"collided at t = {r.collision['t']:.2f} s", details
+    if length < MIN_PATH:
+        return (
+            False,
+            f"drove only {length:.2f} m in {seconds:g} s (at least {MIN_PATH:g} m expected)",
+            details,
+        )
+    return True, f"no collision in {seconds:g} s, {length:.1f} m driven", details
+
+
+def week4_world(ctx: Context) -> Outcome:
+    ok, text, details = _avoid(ctx, "week4.avoid.week4_world", load_world("week4"), "week-4 world", SECONDS)
+    return Outcome(float(ok), f"week-4 world, v = {V}: {text}", details, status=scenarios.fatal_status(ctx))
+
+
+def other_starts(ctx: Context) -> Outcome:
+    from grader.hidden import load_hidden
+
+    data = load_hidden(4)
+    if not data:
+        return Outcome(
+            0.0, "the instructor's hidden set is not here (it runs at official grading)", status="error"
+        )
+    picks = random.Random(f"{ctx.seed}:week4-variants").sample(data["variants"], 3)
+    good, lines, runs = 0, [], []
+    for v in picks:
+        world = _variant(load_world("week4"), v["turn"], v["of"], v["mirror"])
+        ok, text, details = _avoid(ctx, "week4.avoid.other_starts", world, world.name, SECONDS)
+        good += ok
+        lines.append(f"{world.name}: {text}")
+        runs.append({"variant": v, **details})
+    return Outcome(good / 3, "; ".join(lines), {"runs": runs}, status=scenarios.fatal_status(ctx))
+
+
+CHECKS = [
+    Check("week4.transform.matrix", "get_transformation_matrix", "property", 1.0, transformation, AO),
+    Check(
+        "week4.sensor_geometry.robot_frame",
+        "IR points in the robot frame",
+        "property",
+        1.0,
+        _frame_check("robot"),
+        AO,
+    ),
+    Check(
+        "week4.sensor_geometry.world_frame",
+        "IR points in the world frame",
+        "property",
+        1.0,
+        _frame_check("world"),
+        AO,
+    ),
+    Check("week4.avoid.symmetric_gains", "sensor gains are symmetric", "property", 0.5, symmetric_gains, AO),
+    Check("week4.avoid.points_away", "u_ao points away from obstacles", "property", 1.0, points_away, AO),
+    Check(
+        "week4.avoid.week4_world",
+        "60 s in the week-4 world: no collision, really moving",
+        "scenario",
+        2.0,
+        week4_world,
+        ALL,
+    ),
+    Check(
+        "week4.avoid.other_starts",
+        "60 s in variants of the week-4 world drawn per seed",
+        "scenario",
+        1.5,
+        other_starts,
+        ALL,
+        visibility="hidden",
+    ),
+]
