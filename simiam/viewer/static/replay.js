@@ -252,7 +252,7 @@
 
   // ---------- plots linked to the time cursor ----------
   function wrap(a) { return a === null ? null : Math.atan2(Math.sin(a), Math.cos(a)); }
-  function Plot(title, series, unit) {
+  function Plot(title, series, fixed) {
     var box = document.createElement("div"), h = document.createElement("h2"), c = document.createElement("canvas");
     box.className = "plot";
     h.textContent = title;
@@ -266,6 +266,7 @@
     var lo = Infinity, hi = -Infinity;
     series.forEach(function (s) { s.ys.forEach(function (v) { if (v !== null && isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); } }); });
     if (!isFinite(lo)) { lo = 0; hi = 1; }
+    if (fixed) { lo = Math.min(lo, fixed[0]); hi = Math.max(hi, fixed[1]); }
     if (hi - lo < 1e-9) { lo -= 0.5; hi += 0.5; }
     var pad = 0.06 * (hi - lo); lo -= pad; hi += pad;
     var self = { canvas: c, w: 1, h: 1, back: null };
@@ -286,7 +287,7 @@
       g.font = "10px system-ui, sans-serif"; g.fillStyle = "#5b6573"; g.strokeStyle = "#e3e7ec"; g.lineWidth = 1;
       [lo + pad, (lo + hi) / 2, hi - pad].forEach(function (v) {
         g.beginPath(); g.moveTo(ML, py(v)); g.lineTo(self.w - MR, py(v)); g.stroke();
-        g.fillText(fmtNum(v) + (unit ? unit : ""), 1, py(v) + 3);
+        g.fillText(fmtNum(v), 1, py(v) + 3);
       });
       g.fillText(T0.toFixed(0) + " s", ML, self.h - 2);
       g.textAlign = "right"; g.fillText(TEND.toFixed(1) + " s", self.w - MR, self.h - 2); g.textAlign = "left";
@@ -347,7 +348,7 @@
       { label: "right", ys: S.vel_r, color: COLORS.series[0] }, { label: "left", ys: S.vel_l, color: COLORS.series[3] }]));
     var irs = [];
     for (var k = 0; k < 5; k++) { if (S["ir" + k]) { irs.push({ label: "IR" + (k + 1), ys: S["ir" + k], color: COLORS.series[k] }); } }
-    if (irs.length) { plots.push(Plot("IR distances (m)", irs)); }
+    if (irs.length) { plots.push(Plot("IR distances (m)", irs, [0, D.robot.ir_max_range])); }
   })();
 
   // ---------- status line and clock ----------

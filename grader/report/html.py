@@ -1,0 +1,235 @@
+"""The grader's HTML report for one submission: summary, checks table, and per-check details with plots.
+
+`render_report(result, traces)` returns the page; `write_report(result, traces, path)` writes it. `result` is
+the contract's result JSON; `traces` maps trace keys to Seam-2 traces (dicts). A check's runs are found as
+`traces[check_id]`, `traces[check_id + "#2"]`, ... (what `grader.scenarios.keep` stores), or under the names
+listed in `details["traces"]`. Run k of a check lines up with `details["runs"][k]` for its metrics.
+
+Everything a student controls (messages, details, printed output, the submission name) is escaped by
+jinja2's autoescape; the plots are inline SVG built from numbers (grader.report.svg), readable offline.
+Each scenario run gets an embedded replay (simiam.viewer.replay in an iframe `srcdoc`), thinned so that
+the report stays small; `replays="files"` writes the replay pages next to the report and links them.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+from typing import Any
+
+import jinja2
+
+from grader.report import svg
+
+# Metrics the scenario checks report, in the order shown, with how to print them.
+METRICS: dict[str, tuple[str, str]] = {
+    "reached": ("reached the goal", "bool"),
+    "time_to_goal": ("time to goal", "s"),
+    "final_distance": ("final distance", "m"),
+    "min_clearance": ("minimum clearance", "m"),
+    "settle_time": ("settle time", "s"),
+    "overshoot": ("overshoot", "%"),
+    "collided": ("collided", "bool"),
+    "heading_error": ("heading error", "rad"),
+    "path_length": ("distance driven", "m"),
+    "max_displacement": ("furthest from start", "m"),
+    "seconds": ("simulated", "s"),
+}
+RUN_LABELS = ("label", "goal", "theta_d", "world")
+REPLAY_ROWS = 1000          # rows per embedded replay: a 60 s run at dt 0.033 is thinned to every 2nd step
+STATUS_WORDS = {"passed": "passed", "failed": "failed", "error": "error", "timeout": "timed out"}
+
+
+def _env() -> jinja2.Environment:
+    env = jinja2.Environment(loader=jinja2.PackageLoader("grader.report", "templates"), autoescape=True,
+                             undefined=jinja2.ChainableUndefined, trim_blocks=True, lstrip_blocks=True)
+    env.filters["num"] = _num
+    return env
+
+
+def _num(v: Any, digits: int = 3) -> str:
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        return "–" if v is None else str(v)
+    if not math.isfinite(v):
+        return str(v)
+    return f"{v:.{digits}f}".rstrip("0").rstrip(".") if isinstance(v, float) else str(v)
+
+
+def format_metric(key: str, value: Any) -> str:
+    """A metric as a student reads it: units, percentages, yes/no, '–' for not measured."""
+    unit = METRICS.get(key, ("", ""))[1]
+    if value is None:
+        return "never" if key in ("time_to_goal", "settle_time") else "–"
+    if unit == "bool":
+        return "yes" if value else "no"
+    if unit == "%" and isinstance(value, (int, float)):
+        return f"{100 * value:.1f} %"
+    if isinstance(value, (list, tuple)):
+        return "(" + ", ".join(_num(v) for v in value) + ")"
+    text = _num(value)
+    return f"{text} {unit}" if unit and isinstance(value, (int, float)) else text
+
+
+def _case_text(case: Any) -> list[tuple[str, str]]:
+    if isinstance(case, dict):
+        return [(str(k), json.dumps(v) if not isinstance(v, str) else v) for k, v in case.items()]
+    return [("input", json.dumps(case) if not isinstance(case, str) else case)]
+
+
+def _runs(details: dict) -> list[dict]:
+    runs = details.get("runs")
+    if isinstance(runs, list):
+        return [r for r in runs if isinstance(r, dict)]
+    if any(k in details for k in METRICS):
+        return [details]
+    return []
+
+
+def _metric_table(runs: list[dict]) -> dict | None:
+    """Columns (label, key) present in any run, rows of formatted values; None if there is nothing to show."""
+    if not runs:
+        return None
+    labels = [k for k in RUN_LABELS if any(k in r for r in runs)]
+    keys = [k for k in METRICS if any(k in r for r in runs)]
+    if not keys:
+        return None
+    cols = [(k, k) for k in labels] + [(METRICS[k][0], k) for k in keys]
+    rows = []
+    for r in runs:
+        cells = [format_metric(k, r.get(k)) for _, k in cols]
+        rows.append({"cells": cells, "problem": r.get("problem") or ""})
+    return {"cols": [c for c, _ in cols], "rows": rows}
+
+
+def _trace_keys(check: dict, traces: dict) -> list[str]:
+    listed = (check.get("details") or {}).get("traces")
+    if isinstance(listed, list):
+        return [k for k in listed if isinstance(k, str) and k in traces]
+    cid = str(check.get("id", ""))
+    keys = [k for k in traces if k == cid or k.startswith(cid + "#")]
+
+    def order(k: str) -> int:
+        return int(k.split("#", 1)[1]) if "#" in k and k.split("#", 1)[1].isdigit() else 1
+
+    return sorted(keys, key=order)
+
+
+def _slug(text: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", text).strip("_") or "run"
+
+
+def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
+               hrefs: dict[str, str]) -> list[dict]:
+    from simiam.viewer.replay import TraceFormatError, render_replay
+
+    views = []
+    for k, key in enumerate(_trace_keys(check, traces)):
+        trace = traces[key]
+        if not isinstance(trace, dict):
+            continue
+        metrics = runs[k] if k < len(runs) else {}
+        meta = trace.get("meta") or {}
+        label = meta.get("check_label") or key
+        steps = trace.get("steps") or {}
+        view: dict[str, Any] = {"key": key, "label": label, "anchor": "run-" + _slug(key), "problem": "",
+                                "trajectory": None, "heading": None, "srcdoc": None, "href": hrefs.get(key)}
+        if not steps.get("t"):
+            view["problem"] = "the run stopped before its first step, so there is nothing to plot"
+            views.append(view)
+            continue
+        view["trajectory"] = svg.trajectory_svg(trace)
+        goal = trace.get("goal") or metrics.get("goal")
+        if goal or trace.get("week") == 3:
+            view["heading"] = svg.heading_svg(trace, goal=goal, settle_time=metrics.get("settle_time"))
+        if replays == "inline" and not view["href"]:
+            try:
+                title = f"{check.get('id', '')}: {label}"
+                view["srcdoc"] = render_replay(trace, title=title, max_rows=REPLAY_ROWS)
+            except TraceFormatError as exc:
+                view["problem"] = f"no replay: {exc}"
+        views.append(view)
+    return views
+
+
+def _check_view(check: dict, traces: dict, replays: str, hrefs: dict[str, str]) -> dict:
+    details = check.get("details") if isinstance(check.get("details"), dict) else {}
+    runs = _runs(details)
+    shown = {"runs", "counterexample", "replay", "traces", "stdout", "stderr", "case"} | set(METRICS)
+    extra = {k: v for k, v in details.items() if k not in shown}
+    status = str(check.get("status", ""))
+    return {
+        "id": str(check.get("id", "")), "name": str(check.get("name") or check.get("id", "")),
+        "kind": str(check.get("kind", "")), "visibility": str(check.get("visibility", "") or ""),
+        "status": status, "status_word": STATUS_WORDS.get(status, status or "?"),
+        "points": check.get("points"), "max_points": check.get("max_points"),
+        "message": str(check.get("message", "") or ""), "anchor": "check-" + _slug(str(check.get("id", ""))),
+        "counterexample": _case_text(details["counterexample"]) if "counterexample" in details else None,
+        "replay_command": str(details["replay"]) if details.get("replay") else "",
+        "metrics": _metric_table(runs),
+        "output": [(name, str(details[name])) for name in ("stdout", "stderr") if details.get(name)],
+        "extra": json.dumps(extra, indent=2, default=str, allow_nan=True) if extra else "",
+        "runs": _run_views(check, traces, runs, replays, hrefs),
+    }
+
+
+def _summary(result: dict, checks: list[dict]) -> dict:
+    hidden = result.get("hidden")
+    isolation = result.get("isolation") or result.get("sandbox") or result.get("sandbox_mode")
+    if isinstance(isolation, dict):
+        isolation = isolation.get("mode") or json.dumps(isolation)
+    counts = {s: sum(1 for c in checks if c["status"] == s) for s in STATUS_WORDS}
+    if hidden:
+        note = ("Official grading: the hidden variants (other goals, other worlds, drawn per seed) "
+                "were run too.")
+    else:
+        note = ("These are the visible checks. Official grading also runs hidden variants "
+                "(other goals, other worlds, drawn per seed).")
+    return {"week": result.get("week"), "score": result.get("score"), "max_score": result.get("max_score"),
+            "status": str(result.get("status", "")), "message": str(result.get("message", "") or ""),
+            "seed": result.get("seed"), "grader_version": str(result.get("grader_version", "") or ""),
+            "check_set_hash": str(result.get("check_set_hash", "") or ""),
+            "submission": str(result.get("submission", "") or ""), "isolation": str(isolation or ""),
+            "hidden": bool(hidden), "visibility_note": note, "counts": counts,
+            "stdout": str(result.get("stdout", "") or ""), "stderr": str(result.get("stderr", "") or "")}
+
+
+def render_report(result: dict, traces: dict[str, dict] | None = None, *, replays: str = "inline",
+                  replay_hrefs: dict[str, str] | None = None) -> str:
+    """Return the HTML report for one submission's result JSON and its scenario traces.
+
+    `replays`: "inline" embeds each run's replay page in an iframe `srcdoc` (self-contained; long runs
+    thinned), "none" leaves them out; a trace key in `replay_hrefs` is linked to that URL instead.
+    """
+    if not isinstance(result, dict):
+        raise TypeError(f"result must be the result JSON (a dict), not {type(result).__name__}")
+    traces = traces or {}
+    checks = [_check_view(c, traces, replays, replay_hrefs or {})
+              for c in result.get("checks") or [] if isinstance(c, dict)]
+    return _env().get_template("report.html.j2").render(summary=_summary(result, checks), checks=checks)
+
+
+def write_report(result: dict, traces: dict[str, dict] | None, path: str | Path, *,
+                 replays: str = "inline") -> Path:
+    """Write the report to `path` and return it.
+
+    replays="inline" (default) keeps the report one self-contained file (what the batch runner copies);
+    replays="files" writes each run's full replay page into `<stem>-replays/` next to it and links them.
+    """
+    out = Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    hrefs: dict[str, str] = {}
+    if replays == "files" and traces:
+        from simiam.viewer.replay import TraceFormatError, write_replay
+
+        folder = out.parent / f"{out.stem}-replays"
+        for key, trace in traces.items():
+            try:
+                write_replay(trace, folder / f"{_slug(key)}.html")
+            except TraceFormatError:
+                continue
+            hrefs[key] = f"{folder.name}/{_slug(key)}.html"
+    out.write_text(render_report(result, traces, replays="none" if replays == "files" else replays,
+                                 replay_hrefs=hrefs), encoding="utf-8")
+    return out

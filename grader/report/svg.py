@@ -1,0 +1,341 @@
+"""Inline SVG plots for the grader's reports: readable offline, no script, text escaped by construction.
+
+Every function returns `markupsafe.Markup` (safe to drop into an autoescaping jinja2 template) built only
+from numbers and `html.escape`d labels. The batch summary page can reuse `histogram_svg` and
+`pass_rate_svg`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from html import escape
+
+from markupsafe import Markup
+
+BLUE, RED, GREEN, GREY, ORANGE = "#1f4fd1", "#d1242f", "#1a7f37", "#8a8f98", "#b35900"
+_FONT = 'font-family="system-ui, sans-serif" font-size="11"'
+
+
+def _n(v: float) -> str:
+    """A coordinate with at most two decimals (pixels), without '-0'."""
+    s = f"{v:.2f}".rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+def _finite(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _label(v: float) -> str:
+    a = abs(v)
+    if a >= 100 or a == 0:
+        return f"{v:.0f}"
+    return f"{v:.2f}" if a < 10 else f"{v:.1f}"
+
+
+def _ticks(lo: float, hi: float, count: int = 4) -> list[float]:
+    raw = (hi - lo) / max(count, 1)
+    if raw <= 0:
+        return [lo]
+    p = 10 ** math.floor(math.log10(raw))
+    step = p * min((m for m in (1, 2, 5, 10) if m * p >= raw), default=10)
+    first = math.ceil(lo / step) * step
+    return [first + k * step for k in range(int((hi - first) / step + 1e-9) + 1)]
+
+
+def _downsample(xs: Sequence, ys: Sequence, limit: int = 600) -> list[tuple[float, float | None]]:
+    """At most ~limit points, keeping every gap (None) so broken lines stay broken."""
+    n = min(len(xs), len(ys))
+    stride = max(1, math.ceil(n / limit))
+    out = []
+    for k in range(0, n, stride):
+        out.append((xs[k], ys[k] if _finite(ys[k]) else None))
+    if n and (n - 1) % stride:
+        out.append((xs[n - 1], ys[n - 1] if _finite(ys[n - 1]) else None))
+    return out
+
+
+@dataclass
+class Series:
+    """One line of a plot: y against x, with a legend label; `wrap` breaks the line at ±π jumps."""
+
+    label: str
+    xs: Sequence[float]
+    ys: Sequence[float | None]
+    color: str = BLUE
+    dash: str = ""
+    width: float = 1.6
+    wrap: bool = False
+
+
+@dataclass
+class Chart:
+    """A line chart with axes; `bands` are shaded (x, lo, hi) polygons, `vlines` are (x, colour, label)."""
+
+    series: list[Series]
+    title: str = ""
+    x_label: str = ""
+    y_label: str = ""
+    width: int = 460
+    height: int = 240
+    bands: list[tuple[list[float], list[float | None], list[float | None], str]] = field(default_factory=list)
+    vlines: list[tuple[float, str, str]] = field(default_factory=list)
+
+    def render(self) -> Markup:
+        ml, mr, mt, mb = 46, 10, 22 if self.title else 8, 34
+        pts = [(x, y) for s in self.series for x, y in zip(s.xs, s.ys, strict=False)
+               if _finite(x) and _finite(y)]
+        pts += [(x, v) for xs, los, his, _ in self.bands for x, lo, hi in zip(xs, los, his, strict=False)
+                for v in (lo, hi) if _finite(x) and _finite(v)]
+        if not pts:
+            pts = [(0.0, 0.0), (1.0, 1.0)]
+        x0, x1 = min(p[0] for p in pts), max(p[0] for p in pts)
+        y0, y1 = min(p[1] for p in pts), max(p[1] for p in pts)
+        if x1 - x0 < 1e-12:
+            x0, x1 = x0 - 0.5, x1 + 0.5
+        if y1 - y0 < 1e-12:
+            y0, y1 = y0 - 0.5, y1 + 0.5
+        pad = 0.05 * (y1 - y0)
+        y0, y1 = y0 - pad, y1 + pad
+        w, h = self.width, self.height
+
+        def px(x: float) -> float:
+            return ml + (x - x0) / (x1 - x0) * (w - ml - mr)
+
+        def py(y: float) -> float:
+            return mt + (y1 - y) / (y1 - y0) * (h - mt - mb)
+
+        out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w} {h}" width="{w}" height="{h}" '
+               f'role="img" class="plot" {_FONT}><title>{escape(self.title or self.y_label)}</title>',
+               f'<rect x="0" y="0" width="{w}" height="{h}" fill="#fff"/>']
+        if self.title:
+            out.append(f'<text x="{ml}" y="14" font-weight="600">{escape(self.title)}</text>')
+        for t in _ticks(y0, y1):
+            out.append(f'<line x1="{ml}" x2="{w - mr}" y1="{_n(py(t))}" y2="{_n(py(t))}" stroke="#e6e9ee"/>'
+                       f'<text x="{ml - 4}" y="{_n(py(t) + 3.5)}" text-anchor="end" fill="#555">'
+                       f'{_label(t)}</text>')
+        for t in _ticks(x0, x1, 6):
+            out.append(f'<text x="{_n(px(t))}" y="{h - mb + 13}" text-anchor="middle" fill="#555">'
+                       f'{_label(t)}</text>')
+        out.append(f'<rect x="{ml}" y="{mt}" width="{w - ml - mr}" height="{h - mt - mb}" fill="none" '
+                   f'stroke="#c5cbd3"/>')
+        for xs, los, his, color in self.bands:
+            out.extend(_band(xs, los, his, color, px, py))
+        for x, color, label in self.vlines:
+            if _finite(x) and x0 <= x <= x1:
+                out.append(f'<line x1="{_n(px(x))}" x2="{_n(px(x))}" y1="{mt}" y2="{h - mb}" '
+                           f'stroke="{color}" stroke-dasharray="4 3"/>'
+                           f'<text x="{_n(px(x) + 3)}" y="{mt + 11}" fill="{color}">{escape(label)}</text>')
+        for s in self.series:
+            for d in _paths(s, px, py):
+                dash = f' stroke-dasharray="{s.dash}"' if s.dash else ""
+                out.append(f'<path d="{d}" fill="none" stroke="{s.color}" stroke-width="{s.width}"{dash}/>')
+        lx = ml + 6
+        for s in self.series:  # legend along the bottom
+            dash = f' stroke-dasharray="{s.dash}"' if s.dash else ""
+            out.append(f'<line x1="{lx}" x2="{lx + 16}" y1="{h - 7}" y2="{h - 7}" stroke="{s.color}" '
+                       f'stroke-width="2"{dash}/><text x="{lx + 20}" y="{h - 3}">{escape(s.label)}</text>')
+            lx += 34 + 6.5 * len(s.label)
+        if self.x_label:  # in the corner under the y labels, clear of the ticks and the legend
+            out.append(f'<text x="{ml - 4}" y="{h - mb + 13}" text-anchor="end" fill="#555">'
+                       f'{escape(self.x_label)}</text>')
+        out.append("</svg>")
+        return Markup("".join(out))
+
+
+def _paths(s: Series, px, py) -> list[str]:
+    paths, cur, prev = [], [], None
+    for x, y in _downsample(s.xs, s.ys):
+        if y is None or not _finite(x) or (s.wrap and prev is not None and abs(y - prev) > math.pi):
+            if len(cur) > 1:
+                paths.append("M" + " L".join(cur))
+            cur = []
+        if y is not None and _finite(x):
+            cur.append(f"{_n(px(x))} {_n(py(y))}")
+        prev = y
+    if len(cur) > 1:
+        paths.append("M" + " L".join(cur))
+    return paths
+
+
+def _band(xs, los, his, color, px, py) -> list[str]:
+    """Shaded area between lo and hi, split wherever either is missing or jumps by more than π."""
+    out: list[str] = []
+    seg: list[tuple[float, float, float]] = []
+
+    def flush() -> None:
+        if len(seg) > 1:
+            top = " L".join(f"{_n(px(x))} {_n(py(hi))}" for x, _, hi in seg)
+            bottom = " L".join(f"{_n(px(x))} {_n(py(lo))}" for x, lo, _ in reversed(seg))
+            out.append(f'<path d="M{top} L{bottom} Z" fill="{color}" stroke="none"/>')
+
+    n = min(len(xs), len(los), len(his))
+    for k in range(0, n, max(1, math.ceil(n / 600))):
+        x, lo, hi = xs[k], los[k], his[k]
+        ok = _finite(x) and _finite(lo) and _finite(hi)
+        if not ok or (seg and abs(lo - seg[-1][1]) > math.pi):
+            flush()
+            seg = []
+        if ok:
+            seg.append((x, lo, hi))
+    flush()
+    return out
+
+
+def _wrap(a: float) -> float:
+    return math.atan2(math.sin(a), math.cos(a))
+
+
+def trajectory_svg(trace: dict, size: int = 360) -> Markup:
+    """Top view of one run: obstacles, goal, true path (solid), odometry estimate (dashed), start, end,
+    and the collision marked with a red cross."""
+    steps = trace.get("steps") or {}
+    xs, ys = steps.get("x") or [], steps.get("y") or []
+    obstacles = (trace.get("world") or {}).get("obstacles") or []
+    pts = [(x, y) for poly in obstacles for x, y in poly] + list(zip(xs, ys, strict=False))
+    goal = trace.get("goal")
+    if goal:
+        pts.append((goal[0], goal[1]))
+    pts = [p for p in pts if _finite(p[0]) and _finite(p[1])] or [(-1.0, -1.0), (1.0, 1.0)]
+    x0, x1 = min(p[0] for p in pts), max(p[0] for p in pts)
+    y0, y1 = min(p[1] for p in pts), max(p[1] for p in pts)
+    span = max(x1 - x0, y1 - y0, 0.2) * 1.06
+    cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+    scale = size / span
+
+    def sx(x: float) -> float:
+        return size / 2 + (x - cx) * scale
+
+    def sy(y: float) -> float:
+        return size / 2 - (y - cy) * scale
+
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {size} {size}" width="{size}" '
+           f'height="{size}" role="img" class="plot trajectory" {_FONT}><title>trajectory</title>'
+           f'<rect width="{size}" height="{size}" fill="#fff" stroke="#c5cbd3"/>']
+    for poly in obstacles:
+        d = " ".join(f"{_n(sx(x))},{_n(sy(y))}" for x, y in poly if _finite(x) and _finite(y))
+        out.append(f'<polygon points="{d}" fill="#9aa3ae" stroke="#5b6573" stroke-width="0.8"/>')
+    est = _polyline(steps.get("x_est") or [], steps.get("y_est") or [], sx, sy)
+    if est:
+        out.append(f'<polyline points="{est}" fill="none" stroke="{GREY}" stroke-width="1.3" '
+                   f'stroke-dasharray="4 3"/>')
+    true = _polyline(xs, ys, sx, sy)
+    if true:
+        out.append(f'<polyline points="{true}" fill="none" stroke="{BLUE}" stroke-width="1.8"/>')
+    if goal and _finite(goal[0]) and _finite(goal[1]):
+        gx, gy = sx(goal[0]), sy(goal[1])
+        out.append(f'<circle cx="{_n(gx)}" cy="{_n(gy)}" r="6" fill="none" stroke="{GREEN}" '
+                   f'stroke-width="2"/>'
+                   f'<circle cx="{_n(gx)}" cy="{_n(gy)}" r="2" fill="{GREEN}"/>'
+                   f'<text x="{_n(gx + 8)}" y="{_n(gy - 6)}" fill="{GREEN}">goal</text>')
+    if xs and _finite(xs[0]) and _finite(ys[0]):
+        out.append(f'<circle cx="{_n(sx(xs[0]))}" cy="{_n(sy(ys[0]))}" r="3.5" fill="#fff" stroke="{BLUE}" '
+                   f'stroke-width="1.5"><title>start</title></circle>')
+    if xs and _finite(xs[-1]) and _finite(ys[-1]):
+        out.append(f'<circle cx="{_n(sx(xs[-1]))}" cy="{_n(sy(ys[-1]))}" r="3.5" fill="{BLUE}">'
+                   f'<title>end</title></circle>')
+    col = trace.get("collision")
+    pose = col.get("pose") if isinstance(col, dict) else None
+    if isinstance(pose, list) and len(pose) >= 2 and all(_finite(v) for v in pose[:2]):
+        x, y = sx(pose[0]), sy(pose[1])
+        t = col.get("t")
+        label = f"collision at t = {t:.2f} s" if _finite(t) else "collision"
+        out.append(f'<path d="M{_n(x - 6)} {_n(y - 6)} L{_n(x + 6)} {_n(y + 6)} M{_n(x + 6)} {_n(y - 6)} '
+                   f'L{_n(x - 6)} {_n(y + 6)}" stroke="{RED}" stroke-width="2.5"/>'
+                   f'<text x="{_n(min(x + 9, size - 120))}" y="{_n(y + 4)}" fill="{RED}" font-weight="600">'
+                   f'{escape(label)}</text>')
+    out.append(f'<g transform="translate(6 {size - 8})"><line x1="0" x2="16" y1="-4" y2="-4" stroke="{BLUE}" '
+               f'stroke-width="2"/><text x="20" y="0">true path</text><line x1="86" x2="102" y1="-4" y2="-4" '
+               f'stroke="{GREY}" stroke-dasharray="4 3" stroke-width="1.5"/><text x="106" y="0">odometry'
+               f'</text></g></svg>')
+    return Markup("".join(out))
+
+
+def _polyline(xs: Sequence, ys: Sequence, sx, sy) -> str:
+    pts = [(x, y) for x, y in _downsample(xs, ys, 800) if y is not None and _finite(x)]
+    return " ".join(f"{_n(sx(x))},{_n(sy(y))}" for x, y in pts)
+
+
+def heading_svg(trace: dict, goal: Sequence[float] | None = None, settle_time: float | None = None,
+                band: float = 0.1) -> Markup:
+    """θ against θ_g over time, with the course's settle band |θ − θ_g| < band·|θ_g| shaded.
+
+    θ is the TRUE heading and θ_g the heading from the true position to the goal when a goal is known
+    (how the grader measures settle time and overshoot); otherwise the trace's own theta_g column is used.
+    The estimate's θ is drawn faintly for comparison.
+    """
+    steps = trace.get("steps") or {}
+    ts = steps.get("t") or []
+    goal = goal or trace.get("goal")
+    theta = [_wrap(v) if _finite(v) else None for v in steps.get("theta") or []]
+    est = [_wrap(v) if _finite(v) else None for v in steps.get("theta_est") or []]
+    if goal and _finite(goal[0]) and _finite(goal[1]):
+        ref = [math.atan2(goal[1] - y, goal[0] - x) if _finite(x) and _finite(y) else None
+               for x, y in zip(steps.get("x") or [], steps.get("y") or [], strict=False)]
+        ref_label = "θ_g (true position to goal)"
+    else:
+        ref = [v if _finite(v) else None for v in steps.get("theta_g") or []]
+        ref_label = "θ_g (your controller)"
+    lo = [r - band * abs(r) if r is not None else None for r in ref]
+    hi = [r + band * abs(r) if r is not None else None for r in ref]
+    series = [Series("θ (true)", ts, theta, BLUE, wrap=True),
+              Series(ref_label, ts, ref, RED, dash="6 4", wrap=True),
+              Series("θ (estimate)", ts, est, GREY, width=1.0, wrap=True)]
+    vlines = [(settle_time, GREEN, f"settled {settle_time:.2f} s")] if _finite(settle_time) else []
+    return Chart(series, title=f"Heading θ against θ_g (band ±{band:.0%} of θ_g)", x_label="t (s)",
+                 bands=[(list(ts), lo, hi, "rgba(209,36,47,0.12)")], vlines=vlines).render()
+
+
+def histogram_svg(scores: Sequence[float], max_score: float, bins: int = 10, width: int = 520,
+                  height: int = 200, title: str = "Scores") -> Markup:
+    """Histogram of submission scores over [0, max_score] in `bins` equal bins (the top bin includes max)."""
+    counts = [0] * bins
+    for s in scores:
+        if _finite(s) and max_score > 0:
+            counts[min(bins - 1, max(0, int(s / max_score * bins)))] += 1
+    ml, mb, mt = 34, 30, 22
+    peak = max(counts) or 1
+    bw = (width - ml - 8) / bins
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {width} {height}" width="{width}" '
+           f'height="{height}" role="img" class="plot histogram" {_FONT}><title>{escape(title)}</title>'
+           f'<text x="{ml}" y="14" font-weight="600">{escape(title)}</text>']
+    for k, c in enumerate(counts):
+        bh = (height - mt - mb) * c / peak
+        x = ml + k * bw
+        lo, hi = max_score * k / bins, max_score * (k + 1) / bins
+        out.append(f'<rect x="{_n(x + 1)}" y="{_n(height - mb - bh)}" width="{_n(bw - 2)}" height="{_n(bh)}" '
+                   f'fill="{BLUE}"><title>{_label(lo)}–{_label(hi)}: {c}</title></rect>')
+        if c:
+            out.append(f'<text x="{_n(x + bw / 2)}" y="{_n(height - mb - bh - 3)}" '
+                       f'text-anchor="middle">{c}</text>')
+        out.append(f'<text x="{_n(x)}" y="{height - mb + 13}" text-anchor="middle" fill="#555">'
+                   f'{_label(lo)}</text>')
+    out.append(f'<text x="{_n(ml + bins * bw)}" y="{height - mb + 13}" text-anchor="middle" fill="#555">'
+               f'{_label(max_score)}</text><line x1="{ml}" x2="{_n(ml + bins * bw)}" y1="{height - mb}" '
+               f'y2="{height - mb}" stroke="#555"/><text x="{ml}" y="{height - 3}" fill="#555">score</text>'
+               f'<text x="4" y="{mt + 8}" fill="#555">{peak}</text></svg>')
+    return Markup("".join(out))
+
+
+def pass_rate_svg(rates: Sequence[tuple[str, float]], width: int = 620,
+                  title: str = "Pass rate per check") -> Markup:
+    """Horizontal bars: for each (check label, fraction passed in 0..1), one bar with its percentage."""
+    row, ml, mt = 20, min(300, 12 + 6.3 * max((len(lbl) for lbl, _ in rates), default=4)), 24
+    height = mt + row * len(rates) + 8
+    bar_w = width - ml - 50
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {width} {height}" width="{width}" '
+           f'height="{height}" role="img" class="plot pass-rates" {_FONT}><title>{escape(title)}</title>'
+           f'<text x="4" y="14" font-weight="600">{escape(title)}</text>']
+    for k, (label, rate) in enumerate(rates):
+        r = min(1.0, max(0.0, rate)) if _finite(rate) else 0.0
+        y = mt + k * row
+        color = GREEN if r >= 0.8 else ORANGE if r >= 0.5 else RED
+        out.append(f'<text x="{_n(ml - 6)}" y="{y + 13}" text-anchor="end">{escape(label)}</text>'
+                   f'<rect x="{_n(ml)}" y="{y + 3}" width="{_n(bar_w)}" height="{row - 6}" fill="#eef0f3"/>'
+                   f'<rect x="{_n(ml)}" y="{y + 3}" width="{_n(bar_w * r)}" height="{row - 6}" '
+                   f'fill="{color}"/>'
+                   f'<text x="{_n(ml + bar_w + 4)}" y="{y + 13}">{r:.0%}</text>')
+    out.append("</svg>")
+    return Markup("".join(out))

@@ -1,0 +1,145 @@
+"""The grader's HTML report as text: summary, checks table, details, escaping, plots and embedded replays."""
+
+from __future__ import annotations
+
+import importlib.util
+import re
+from pathlib import Path
+from xml.etree import ElementTree
+
+import pytest
+
+from grader.report import render_report, svg, write_report
+from grader.report.html import format_metric
+
+WRONG = Path(__file__).resolve().parents[1] / "data" / "report_wrong"
+
+
+def _wrong():
+    spec = importlib.util.spec_from_file_location("simiam_report_wrong", WRONG / "unescaped.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def student_markup_is_inert(html: str) -> bool:
+    """No student-supplied tag survives as markup (the fixture's EVIL text appears only escaped)."""
+    return "<script>window.pwned" not in html and "<img src=x" not in html and \
+        "&lt;script&gt;window.pwned" in html
+
+
+def svg_elements(html: str) -> list[ElementTree.Element]:
+    """Every inline <svg> parsed as XML (a malformed plot raises)."""
+    return [ElementTree.fromstring(m) for m in re.findall(r"<svg\b.*?</svg>", html, flags=re.S)]
+
+
+def test_summary_and_checks_table(week3_result):
+    result, traces = week3_result
+    html = render_report(result, traces, replays="none")
+    for text in ("Week 3 feedback", "4.5", "/ 10", "1234", "0.1.0+abcdef0123456789", "bwrap",
+                 "hidden variants", "1 passed, 2 failed, 1 error"):
+        assert text in html, text
+    rows = re.findall(r"<tr class=\"(passed|failed|error|timeout)\">", html)
+    assert rows == ["passed", "failed", "failed", "error"]
+    assert 'href="#check-week3.pid.integral"' in html and 'id="check-week3.pid.integral"' in html
+
+
+def test_property_counterexample_and_replay_command(week3_result):
+    result, traces = week3_result
+    html = render_report(result, traces, replays="none")
+    section = html.split('id="check-week3.pid.integral"', 1)[1].split("</article>", 1)[0]
+    assert "Counterexample" in section and "<th>e_k</th>" in section and "<code>0.033</code>" in section
+    assert "grade week3 ./alice --check week3.pid.integral --case &#39;e_k=0.5,dt=0.033&#39;" in section
+
+
+def test_scenario_metrics_and_plots(week3_result):
+    result, traces = week3_result
+    html = render_report(result, traces, replays="none")
+    section = html.split('id="check-week3.go_to_goal.reaches_goals"', 1)[1].split("</article>", 1)[0]
+    for text in ("time to goal", "11.2 s", "final distance", "0.048 m", "minimum clearance", "settle time",
+                 "1.32 s", "overshoot", "4.0 %", "never", "it collided at t = 6.73 s"):
+        assert text in section, text
+    plots = svg_elements(section)
+    assert len(plots) == 4  # trajectory and heading for each of the two runs
+    assert section.count("collision at t = 6.73 s") == 1  # only the second run crashed
+    assert "settled 1.32 s" in section and "settled 0.45 s" in section
+
+
+def test_student_text_is_escaped(week3_result):
+    result, traces = week3_result
+    result["submission"] = "<b>alice</b>"
+    html = render_report(result, traces, replays="none")
+    assert student_markup_is_inert(html)
+    assert "&lt;b&gt;alice&lt;/b&gt;" in html
+    assert not student_markup_is_inert(_wrong().render_unescaped(result, traces))
+
+
+def test_inline_replays_are_sandboxed_iframes(week3_result):
+    result, traces = week3_result
+    html = render_report(result, traces)
+    frames = re.findall(r"<iframe [^>]*srcdoc=\"([^\"]*)\"", html)
+    assert len(frames) == 2
+    assert all(f.startswith("&lt;!doctype html&gt;") for f in frames)
+    assert html.count('sandbox="allow-scripts"') == 2  # no same-origin: a replay cannot touch the report
+    print(f"week-3 sample report with two inline replays: {len(html.encode())} bytes")
+
+
+def test_long_runs_are_thinned_in_the_report(synthetic, week3_result):
+    result, _ = week3_result
+    long_run = synthetic.make_trace(week=4, seconds=60.0, stop_on_collision=False)
+    traces = {"week3.go_to_goal.reaches_goals": long_run, "week3.go_to_goal.reaches_goals#2": long_run}
+    html = render_report(result, traces)
+    size = len(html.encode())
+    print(f"report with two 60 s replays inline: {size} bytes")
+    assert "1 step in 2 shown" in html
+    assert size < 1_000_000
+
+
+def test_write_report_files_mode_links_replays(week3_result, tmp_path):
+    result, traces = week3_result
+    path = write_report(result, traces, tmp_path / "out" / "week3.html", replays="files")
+    html = path.read_text()
+    assert "srcdoc" not in html
+    links = re.findall(r'href="(week3-replays/[^"]+)"', html)
+    assert len(links) == 2 and all((path.parent / link).is_file() for link in links)
+
+
+def test_invalid_submission_and_broken_traces(week3_result):
+    result, traces = week3_result
+    invalid = {"week": 3, "score": 0, "max_score": 10, "status": "invalid", "seed": 1, "grader_version": "x",
+               "message": "go_to_goal.py line 3: invalid syntax", "checks": []}
+    html = render_report(invalid, {})
+    assert "go_to_goal.py line 3: invalid syntax" in html and "badge invalid" in html
+    empty = {"format": "simiam-trace/1", "week": 3, "robot": {}, "steps": {"t": []}, "world": {}}
+    html = render_report(result, {"week3.go_to_goal.reaches_goals": empty})
+    assert "stopped before its first step" in html
+
+
+def test_metric_formatting():
+    assert format_metric("overshoot", 0.123) == "12.3 %"
+    assert format_metric("settle_time", None) == "never"
+    assert format_metric("reached", False) == "no"
+    assert format_metric("final_distance", 0.04812345) == "0.048 m"
+    assert format_metric("goal", [1.0, -0.5]) == "(1, -0.5)"
+
+
+def test_svg_helpers_escape_and_parse():
+    evil = "<script>x</script>"
+    hist = svg.histogram_svg([0, 2.5, 10, 10, 7.4], max_score=10, title=evil)
+    bars = svg.pass_rate_svg([(evil, 0.25), ("week3.pid.p", 1.0)])
+    for picture in (hist, bars):
+        ElementTree.fromstring(str(picture))
+        assert "<script>" not in picture
+    counts = [int(t) for t in re.findall(r"<title>[^<]*: (\d+)</title>", str(hist))]
+    assert counts == [1, 0, 1, 0, 0, 0, 0, 1, 0, 2]  # 10 lands in the top bin, not an eleventh one
+    assert "25%" in bars and "100%" in bars
+
+
+@pytest.mark.parametrize("goal", [(1.0, 1.0), None])
+def test_heading_plot_band_follows_the_reference(synthetic, goal):
+    trace = synthetic.load("week3_goal.json")
+    trace["goal"] = None  # then the plot falls back to the controller's own theta_g column
+    picture = str(svg.heading_svg(trace, goal=goal, settle_time=1.0))
+    ElementTree.fromstring(picture)
+    assert ("true position to goal" in picture) == (goal is not None)
+    assert picture.count('fill="rgba(209,36,47,0.12)"') >= 1  # the settle band is drawn
