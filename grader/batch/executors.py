@@ -48,8 +48,10 @@ class DaskExecutor:
     mostly useful to try the set-up. ``client`` may be given directly (tests).
     """
 
-    def __init__(self, scheduler: str | None, budget_s: float, jobs: int = 1, client: Any = None) -> None:
+    def __init__(self, scheduler: str | None, budget_s: float, jobs: int = 1, client: Any = None,
+                 connect_timeout_s: float = 20.0) -> None:
         self.scheduler, self.budget_s, self.jobs, self.client = scheduler, budget_s, jobs, client
+        self.connect_timeout_s = connect_timeout_s
 
     def describe(self) -> dict:
         return {"executor": "dask", "scheduler": self.scheduler, "budget_s": self.budget_s}
@@ -63,7 +65,7 @@ class DaskExecutor:
             return self.client, []
         try:
             if self.scheduler:
-                client = Client(self.scheduler, timeout="20s")
+                client = Client(self.scheduler, timeout=f"{self.connect_timeout_s}s")
                 return client, [client]
             cluster = LocalCluster(n_workers=max(1, self.jobs), threads_per_worker=1, host="127.0.0.1",
                                    dashboard_address=None, processes=True)

@@ -1,0 +1,94 @@
+"""Class files: the gradebook (one column per check, formulas defused), the Gradescope export, the summary
+page (pass rates, histogram, links, escaping) and the progress line."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+
+import batch_fake_grader
+
+from grader.batch.exports import gradebook_csv, gradescope_result, safe_cell
+from grader.batch.progress import Progress, format_duration
+from grader.batch.summary import check_stats, score_histogram, summary_html
+
+TASK = {"week": 3, "seed": 1, "student": "x"}
+
+
+def klass() -> dict[str, dict]:
+    results = {sid: batch_fake_grader.result_for({**TASK, "student": sid}, score)
+               for sid, score in (("alice", 10.0), ("bob", 4.0), ("carl", 0.0))}
+    results["dan"] = {"week": 3, "score": 0.0, "max_score": None, "status": "timeout", "checks": [],
+                      "message": "grading took longer than 300 s\nand was stopped"}
+    results["eve"] = {"week": 3, "score": 0.0, "max_score": None, "status": "invalid", "checks": [],
+                      "message": "=cmd|' /C calc'!A0"}
+    return results
+
+
+def test_gradebook_has_one_column_per_check_and_defuses_formulas(wrong) -> None:
+    rows = list(csv.DictReader(io.StringIO(gradebook_csv(klass()))))
+    assert list(rows[0]) == ["student", "week3.fake.a", "week3.fake.b", "week3.fake.c", "total", "max",
+                             "status", "message"]
+    by_id = {r["student"]: r for r in rows}
+    assert by_id["bob"]["week3.fake.a"] == "4.0" and by_id["bob"]["week3.fake.b"] == "0.0"
+    assert by_id["dan"]["max"] == "10.0" and by_id["dan"]["week3.fake.a"] == ""
+    assert by_id["dan"]["message"] == "grading took longer than 300 s and was stopped"
+    assert by_id["eve"]["message"].startswith("'=")
+    assert wrong.csv_cell_as_is("=cmd") != safe_cell("=cmd")   # the check above would catch a pass-through
+    assert safe_cell(-1.5) == -1.5
+
+
+def test_gradescope_export() -> None:
+    export = gradescope_result(klass()["bob"])
+    assert export["score"] == 4.0
+    assert [t["status"] for t in export["tests"]] == ["passed", "failed", "passed"]
+    assert [t["visibility"] for t in export["tests"]] == ["visible", "visible", "hidden"]
+    assert export["tests"][0] == {"name": "week3.fake.a: first", "score": 4.0, "max_score": 4.0,
+                                  "status": "passed", "output": "", "visibility": "visible"}
+    timeout = gradescope_result(klass()["dan"])
+    assert timeout["score"] == 0.0 and timeout["tests"] == [] and timeout["output"].startswith("timeout:")
+    json.dumps(export, allow_nan=False)
+
+
+def test_summary_statistics_histogram_and_escaping() -> None:
+    results = klass()
+    stats = {s["id"]: s for s in check_stats(results)}
+    assert stats["week3.fake.a"]["pass_rate"] == 2 / 3 and stats["week3.fake.b"]["mean_points"] == 2.0
+    assert score_histogram(results) == [1, 0, 0, 0, 1, 0, 0, 0, 0, 1]
+    results["<script>"] = {**results["bob"], "message": "<b>bold</b>"}
+    page = summary_html(results, {sid: sid for sid in results}, {"week": 3, "seed": 1, "grader": "g"})
+    assert "<script>" not in page and "&lt;script&gt;" in page and "&lt;b&gt;" in page
+    assert 'href="alice.html"' in page and page.count("<rect") == 10
+    assert "75%" in page          # fake.a: alice, bob and the copy of bob pass; carl fails
+
+
+class Clock:
+    def __init__(self) -> None:
+        self.now = 0.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def test_progress_line_counts_rate_eta_and_modes() -> None:
+    clock, stream = Clock(), io.StringIO()
+    bar = Progress(10, stream=stream, tty=False, period_s=10, clock=clock)
+    clock.now = 30.0
+    bar.done("graded")
+    bar.done("skipped")
+    assert "[2/10]" in bar.line() and "graded 1" in bar.line() and "skipped 1" in bar.line()
+    assert "2.0/min" in bar.line() and "ETA 4m00s" in bar.line()
+    assert len(stream.getvalue().splitlines()) == 1         # periodic, not one line per student
+    clock.now = 41.0
+    bar.done("timeout")
+    assert len(stream.getvalue().splitlines()) == 2
+    tty = io.StringIO()
+    live = Progress(3, stream=tty, tty=True, clock=clock)
+    live.done("crashed")
+    live.close()
+    assert tty.getvalue().startswith("\r") and tty.getvalue().count("\n") == 1
+    quiet = io.StringIO()
+    Progress(3, stream=quiet, quiet=True).done("graded")
+    assert quiet.getvalue() == ""
+    assert format_duration(3725) == "1h02m" and format_duration(59) == "59s"
