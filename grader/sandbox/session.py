@@ -5,6 +5,7 @@
         value = session.call("probe", name="uni_to_diff", args={"v": 0.1, "w": 0.5})
         sim = Simulator(world, RemoteBrain(session, settings), spec=..., dt=...)
 
+The worker reads a private copy of `spliced_dir` (grader.sandbox.workdir), never the folder itself.
 `call` returns the worker's JSON value (untrusted: check it with grader.sandbox.validate) or raises
 StudentError (the student's code raised; file and line inside the submission), StudentTimeout (per call, or
 the submission's total budget is spent), WorkerDied (exit, kill, limits, protocol abuse). After a kill the
@@ -23,6 +24,7 @@ from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeo
 from grader.sandbox.limits import Limits
 from grader.sandbox.protocol import to_json
 from grader.sandbox.runner import WorkerProcess
+from grader.sandbox.workdir import WorkCopy
 
 _KEEP_OUTPUTS = 8  # output of the last workers of a session shown in feedback
 
@@ -41,6 +43,7 @@ class StudentSession:
         self._config = {"week": self.week, "probes": probes, "loader": loader}
         self._extra_paths = tuple(str(Path(p).resolve()) for p in extra_paths)
         self._probes_file = probes_file
+        self._work: WorkCopy | None = None
         self._worker: WorkerProcess | None = None
         self._outputs: list[CappedText] = []
         self._load: dict | None = None
@@ -73,9 +76,12 @@ class StudentSession:
         return "\n".join(t for t in texts if t)
 
     def close(self) -> None:
-        """Kill the worker and everything it started."""
+        """Kill the worker and everything it started; remove the private copy of the submission."""
         if self._worker is not None:
             self._retire()
+        if self._work is not None:
+            self._work.remove()
+            self._work = None
 
     def __enter__(self) -> StudentSession:
         return self
@@ -93,8 +99,10 @@ class StudentSession:
             self._retire()
         self._budget_left()
         began = time.monotonic()
+        if self._work is None:
+            self._work = WorkCopy(self.spliced_dir)
         plan = isolation.plan_worker(
-            self.isolation, self.spliced_dir,
+            self.isolation, self._work.path,
             dict(self._config, rlimits=self.limits.for_worker(self.limits.total_seconds - self.seconds_used)),
             tmp_bytes=self.limits.tmp_bytes, extra_paths=self._extra_paths, probes_file=self._probes_file)
         self._worker = WorkerProcess(plan, self.limits.output_bytes)

@@ -1,0 +1,48 @@
+"""The worker's private copy of the spliced submission.
+
+The session copies the spliced folder (the grader's splice output) into a fresh directory before the first
+worker starts: only regular top-level files (no symlinks, no sub-folders, each at most MAX_FILE_BYTES), owned
+by the grader and read-only to everyone else. bubblewrap binds this copy read-only at /submission; a plain
+subprocess reads it in place, so the directory is world-traversable (0711) but not listable, and nothing in
+it is writable by the worker's uid. It is removed when the session closes.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import stat
+import tempfile
+from pathlib import Path
+
+MAX_FILE_BYTES = 512 * 1024
+MAX_FILES = 64
+
+
+class WorkCopy:
+    """A private, read-only copy of `source` at `self.path`; `skipped` lists what was not copied and why."""
+
+    def __init__(self, source: Path) -> None:
+        self._root = Path(tempfile.mkdtemp(prefix="simiam-work-"))
+        self._root.chmod(0o711)
+        self.path = self._root / "submission"
+        self.path.mkdir()
+        self.skipped: list[str] = []
+        entries = sorted(os.scandir(source), key=lambda e: e.name) if source.is_dir() else []
+        for entry in entries:
+            info = entry.stat(follow_symlinks=False)
+            if not stat.S_ISREG(info.st_mode):
+                self.skipped.append(f"{entry.name}: not a regular file")
+            elif info.st_size > MAX_FILE_BYTES:
+                self.skipped.append(f"{entry.name}: larger than {MAX_FILE_BYTES // 1024} kB")
+            elif len(os.listdir(self.path)) >= MAX_FILES:
+                self.skipped.append(f"{entry.name}: more than {MAX_FILES} files")
+            else:
+                target = self.path / entry.name
+                with open(entry.path, "rb") as src, open(target, "xb") as dst:
+                    shutil.copyfileobj(src, dst)
+                target.chmod(0o644)
+        self.path.chmod(0o755)
+
+    def remove(self) -> None:
+        shutil.rmtree(self._root, ignore_errors=True)
