@@ -207,3 +207,34 @@ def test_generator_refuses_a_block_from_a_later_week():
     sol = (ROOT / "solutions/week3/go_to_goal.py").read_text()
     with pytest.raises(BlockError, match="new in week 3"):
         stub_text(2, sol, "go_to_goal.py")
+
+
+# ---------------------------------------------------------------------------------------------- READMEs
+
+
+def check_readme(week: int, text: str) -> None:
+    """The README names the file and the function of every block new that week, and how to run and grade."""
+    from simiam.course.shipped_blocks import SHIPPED
+
+    for file, rows in SHIPPED[week].items():
+        for scope, _occ, new_in, _line, _fp in rows:
+            if new_in == week:
+                assert f"`{file}`" in text or file in text, f"week {week} README does not name {file}"
+                assert scope.rsplit(".", 1)[-1] in text, f"week {week} README does not name {scope}"
+    for command in (f"simiam run week{week}", f"grade week{week}"):
+        assert command in text, f"week {week} README does not say `{command}`"
+    if week > 2:
+        assert f"simiam migrate week{week} --from" in text
+
+
+@pytest.mark.parametrize("week", WEEKS)
+def test_readme_says_what_to_write_and_how_to_check_it(week):
+    check_readme(week, (ROOT / "assignments" / f"week{week}" / "README.md").read_text())
+
+
+def test_incomplete_readme_is_caught():
+    text = (ROOT / "assignments/week4/README.md").read_text()
+    with pytest.raises(AssertionError, match="apply_sensor_geometry"):
+        check_readme(4, text.replace("apply_sensor_geometry", "the geometry"))
+    with pytest.raises(AssertionError, match="grade week3"):
+        check_readme(3, (ROOT / "assignments/week3/README.md").read_text().replace("grade week3", "grade it"))
