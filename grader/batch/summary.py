@@ -1,8 +1,8 @@
 """``summary.html``: the class at a glance, for the instructor.
 
-Per-check pass rates and mean points, the score distribution as an inline SVG histogram, and a table of
-students linking to each report. Self-contained (no scripts, no external files), built from the
-per-student results only.
+Per-check pass rates and mean points, the score distribution as an inline SVG histogram (the report
+package's SVG helpers), and a table of students linking to each report. Self-contained (no scripts, no
+external files), built from the per-student results only.
 """
 
 from __future__ import annotations
@@ -13,8 +13,7 @@ from jinja2 import Environment
 
 from grader.batch.exports import check_ids, class_max_score
 from grader.batch.store import write_atomic
-
-BINS = 10
+from grader.report.svg import histogram_svg, pass_rate_svg
 
 
 def check_stats(results: dict[str, dict]) -> list[dict]:
@@ -34,40 +33,10 @@ def check_stats(results: dict[str, dict]) -> list[dict]:
     return stats
 
 
-def score_histogram(results: dict[str, dict], bins: int = BINS) -> list[int]:
-    """Graded students per score band: ``bins`` equal bands of the percentage, 100 % in the top one."""
-    counts = [0] * bins
-    for result in results.values():
-        score, top = result.get("score"), result.get("max_score")
-        if result.get("status") != "graded" or not isinstance(score, (int, float)) or not top:
-            continue
-        fraction = min(max(float(score) / float(top), 0.0), 1.0)
-        counts[min(int(fraction * bins), bins - 1)] += 1
-    return counts
-
-
-def histogram_svg(counts: list[int], width: int = 520, height: int = 200) -> str:
-    """A bar chart of ``counts`` over 0-100 % as inline SVG text (escaped by construction: numbers only)."""
-    left, bottom, top_pad = 36, 28, 12
-    plot_w, plot_h = width - left - 8, height - bottom - top_pad
-    peak = max(counts) or 1
-    bar_w = plot_w / len(counts)
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" role="img" '
-             f'aria-label="score distribution">',
-             f'<line x1="{left}" y1="{top_pad + plot_h}" x2="{left + plot_w}" y2="{top_pad + plot_h}" '
-             f'stroke="#444"/>']
-    for i, count in enumerate(counts):
-        h = plot_h * count / peak
-        x = left + i * bar_w
-        parts.append(f'<rect x="{x + 2:.1f}" y="{top_pad + plot_h - h:.1f}" width="{bar_w - 4:.1f}" '
-                     f'height="{h:.1f}" fill="#3b7dd8"><title>{count} students</title></rect>')
-        if count:
-            parts.append(f'<text x="{x + bar_w / 2:.1f}" y="{top_pad + plot_h - h - 2:.1f}" font-size="11" '
-                         f'text-anchor="middle">{count}</text>')
-        parts.append(f'<text x="{x + bar_w / 2:.1f}" y="{height - 10}" font-size="10" text-anchor="middle">'
-                     f'{100 * i // len(counts)}%</text>')
-    parts.append(f'<text x="4" y="{top_pad + 10}" font-size="10">{peak}</text></svg>')
-    return "".join(parts)
+def graded_scores(results: dict[str, dict]) -> list[float]:
+    """The scores of the graded students (the others have no meaningful score)."""
+    return [float(r["score"]) for r in results.values()
+            if r.get("status") == "graded" and isinstance(r.get("score"), (int, float))]
 
 
 _TEMPLATE = """<!doctype html>
@@ -89,6 +58,7 @@ rerun the same command to finish.</p>{% endif %}
 <h2>Score distribution (graded submissions)</h2>
 {{ histogram|safe }}
 <h2>Checks</h2>
+{{ pass_rates|safe }}
 <table><tr><th>check</th><th>name</th><th>kind</th><th>max</th><th>pass rate</th><th>mean points</th>
 <th>errors</th></tr>
 {% for c in checks %}<tr><td><code>{{ c.id }}</code></td><td>{{ c.name }}</td><td>{{ c.kind }}</td>
@@ -114,8 +84,8 @@ _env = Environment(autoescape=True)
 def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) -> str:
     """The page's HTML; ``meta`` gives week, seed, hidden, grader and ``incomplete`` (students not done)."""
     max_score = class_max_score(results)
-    graded = [float(r["score"]) for r in results.values()
-              if r.get("status") == "graded" and isinstance(r.get("score"), (int, float))]
+    graded = graded_scores(results)
+    stats = check_stats(results)
     status_counts: dict[str, int] = {}
     for result in results.values():
         status_counts[str(result.get("status"))] = status_counts.get(str(result.get("status")), 0) + 1
@@ -128,7 +98,9 @@ def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) ->
         incomplete=meta.get("incomplete", 0), results=results,
         status_counts=dict(sorted(status_counts.items())),
         mean=sum(graded) / len(graded) if graded else None, max_score=max_score,
-        histogram=histogram_svg(score_histogram(results)), checks=check_stats(results), students=students)
+        histogram=histogram_svg(graded, max_score or 1.0, title="Scores of graded submissions"),
+        pass_rates=pass_rate_svg([(c["id"], c["pass_rate"]) for c in stats]) if stats else "",
+        checks=stats, students=students)
 
 
 def write_summary(out: Path, results: dict[str, dict], stems: dict[str, str], meta: dict) -> None:
