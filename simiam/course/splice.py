@@ -121,7 +121,7 @@ def match_blocks(
                     file,
                     line,
                     f"{scope} has {len(got)} code block(s), the stub has {len(want)} "
-                    f"(START/END lines deleted?); the stub's version is used",
+                    "(START/END lines deleted?)",
                 )
             )
     for scope, got in by_scope.items():
@@ -201,7 +201,7 @@ def splice(stub_text: str, submission_text: str, filename: str) -> SpliceResult:
         sub_blocks = find_blocks(submission_text, filename)
     except BlockError as e:
         result.errors.append(
-            BlockError(e.file, e.line, e.message + "; the stub's version of this file is used")
+            BlockError(e.file, e.line, e.message + " (no block of this file can be taken)")
         )
         result.blocks_kept = [b.describe() for b in stub_blocks]
         return result  # no outside diff: without its blocks the whole file would be listed

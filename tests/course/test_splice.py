@@ -125,7 +125,7 @@ def test_syntax_error_names_the_line_and_keeps_the_placeholder():
         (
             "deleted_end.py",
             16,
-            ["inside the block opened at line 14", "the stub's version of this file is used"],
+            ["inside the block opened at line 14", "no block of this file can be taken"],
         ),
         ("nested.py", 10, ["inside the block opened at line 8"]),
         ("duplicated_start.py", 27, ["inside the block opened at line 26"]),
