@@ -47,7 +47,12 @@ class OutsideEdit:
             if self.first_line >= self.last_line
             else f"{self.first_line}-{self.last_line}"
         )
-        return f"{self.file}:{span}: changed outside the code blocks (not used)\n{self.diff}"
+        # One line (reports list these next to other messages); the full hunk stays in `diff`.
+        lines = [ln.strip() for ln in self.diff.splitlines() if ln[1:].strip()]
+        shown = "; ".join(ln[0] + " " + ln[1:].strip() for ln in lines)
+        if len(shown) > 160:
+            shown = shown[:157] + "..."
+        return f"{self.file}:{span}: changed outside the code blocks (not used): {shown}"
 
     def to_json(self) -> dict:
         return {
