@@ -216,6 +216,9 @@ def test_splice_folder_refuses_binary_and_huge_files(folders):
 
 def test_outside_edit_message_is_one_line_with_the_change():
     result = splice(STUB, read("outside_edits.py"), "controller.py")
-    assert str(result.outside_edits[0]) == "controller.py:4: changed outside the code blocks (not used): + import os"
+    assert (
+        str(result.outside_edits[0])
+        == "controller.py:4: changed outside the code blocks (not used): + import os"
+    )
     assert "\n" not in str(result.outside_edits[1])
     assert result.outside_edits[1].diff.splitlines()[1].startswith("+        return 10 * self.Kp")
