@@ -116,6 +116,20 @@ def _trace_keys(check: dict, traces: dict) -> list[str]:
     return sorted(keys, key=order)
 
 
+def _same_goal(check: dict, traces: dict) -> list[str]:
+    """The first kept run whose goal is this check's `details["goal"]` (the settle/overshoot checks)."""
+    goal = (check.get("details") or {}).get("goal")
+    if not isinstance(goal, (list, tuple)) or len(goal) < 2:
+        return []
+    for key, trace in traces.items():
+        tg = trace.get("goal") if isinstance(trace, dict) else None
+        if isinstance(tg, (list, tuple)) and len(tg) >= 2 and \
+                all(isinstance(a, (int, float)) and isinstance(b, (int, float)) and abs(a - b) < 1e-9
+                    for a, b in zip(tg[:2], goal[:2], strict=True)):
+            return [key]
+    return []
+
+
 def _slug(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9_.-]+", "_", text).strip("_") or "run"
 
@@ -125,7 +139,11 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
     from simiam.viewer.replay import TraceFormatError, render_replay
 
     views = []
-    for k, key in enumerate(_trace_keys(check, traces)):
+    keys = _trace_keys(check, traces)
+    shared = False
+    if not keys:  # a check that measured a run another check kept (same goal): plot it, link the replay
+        keys, shared = _same_goal(check, traces), True
+    for k, key in enumerate(keys):
         trace = traces[key]
         if not isinstance(trace, dict):
             continue
@@ -134,6 +152,7 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
         label = meta.get("check_label") or key
         steps = trace.get("steps") or {}
         view: dict[str, Any] = {"key": key, "label": label, "anchor": "run-" + _slug(key), "problem": "",
+                                "shared": None,
                                 "trajectory": None, "heading": None, "srcdoc": None, "href": hrefs.get(key)}
         if not steps.get("t"):
             view["problem"] = "the run stopped before its first step, so there is nothing to plot"
@@ -143,7 +162,10 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
         goal = trace.get("goal") or metrics.get("goal")
         if goal or trace.get("week") == 3:
             view["heading"] = svg.heading_svg(trace, goal=goal, settle_time=metrics.get("settle_time"))
-        if replays == "inline" and not view["href"]:
+        if shared:
+            view["shared"] = "run-" + _slug(key)
+            view["href"] = None
+        elif replays == "inline" and not view["href"]:
             try:
                 title = f"{check.get('id', '')}: {label}"
                 view["srcdoc"] = render_replay(trace, title=title, max_rows=REPLAY_ROWS)
@@ -186,13 +208,24 @@ def _summary(result: dict, checks: list[dict]) -> dict:
     else:
         note = ("These are the visible checks. Official grading also runs hidden variants "
                 "(other goals, other worlds, drawn per seed).")
+    not_run = result.get("hidden_checks_not_run")
+    if not hidden and isinstance(not_run, int) and not_run > 0:
+        note = (f"{len(checks)} visible checks ran here; {not_run} hidden check{'s' if not_run != 1 else ''} "
+                "(other goals, other worlds, drawn per seed) run at official grading.")
+    problems = result.get("problems") if isinstance(result.get("problems"), dict) else {}
+    notices = result.get("notices") if isinstance(result.get("notices"), list) else []
     return {"week": result.get("week"), "score": result.get("score"), "max_score": result.get("max_score"),
             "status": str(result.get("status", "")), "message": str(result.get("message", "") or ""),
             "seed": result.get("seed"), "grader_version": str(result.get("grader_version", "") or ""),
             "check_set_hash": str(result.get("check_set_hash", "") or ""),
             "submission": str(result.get("submission", "") or ""), "isolation": str(isolation or ""),
             "hidden": bool(hidden), "visibility_note": note, "counts": counts,
-            "stdout": str(result.get("stdout", "") or ""), "stderr": str(result.get("stderr", "") or "")}
+            "isolation_note": str(result.get("isolation_note", "") or ""),
+            "problems": [(str(f), [str(t) for t in (v if isinstance(v, list) else [v])])
+                         for f, v in problems.items()],
+            "notices": [str(n) for n in notices],
+            "stdout": str(result.get("student_output") or result.get("stdout") or ""),
+            "stderr": str(result.get("stderr", "") or "")}
 
 
 def render_report(result: dict, traces: dict[str, dict] | None = None, *, replays: str = "inline",
