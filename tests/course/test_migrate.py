@@ -306,3 +306,14 @@ def test_wrong_body_check_is_caught(w2w3, monkeypatch, capsys):
     monkeypatch.setattr(migrate_module, "check_body", _wrong("check_body_verbatim"))
     with pytest.raises(AssertionError):
         test_reindented_source_is_reindented(w2w3, capsys)
+
+
+def test_week1_into_week2_has_nothing_to_carry(tmp_path, capsys):
+    shutil.copytree(ROOT / "assignments/week1", tmp_path / "w1")
+    shutil.copytree(ROOT / "assignments/week2", tmp_path / "w2")
+    before = snapshot(tmp_path / "w2")
+    assert run("week2", "--from", tmp_path / "w1", "--to", tmp_path / "w2") == 0
+    out = capsys.readouterr().out
+    assert out.count("new this week: yours to write") == 3
+    assert "Nothing to carry" in out
+    assert snapshot(tmp_path / "w2") == before

@@ -222,3 +222,21 @@ def test_outside_edit_message_is_one_line_with_the_change():
     )
     assert "\n" not in str(result.outside_edits[1])
     assert result.outside_edits[1].diff.splitlines()[1].startswith("+        return 10 * self.Kp")
+
+
+def _reindent(text: str, width: int, tabs: bool) -> str:
+    """Every 4 columns of indentation become `width` spaces (or one tab)."""
+    out = []
+    for line in text.splitlines(keepends=True):
+        lead = len(line) - len(line.lstrip(" "))
+        out.append(("\t" if tabs else " " * width) * (lead // 4) + line[lead:])
+    return "".join(out)
+
+
+@pytest.mark.parametrize("width", [1, 2, 3, 8])
+@pytest.mark.parametrize("tabs", [False, True])
+def test_any_consistent_indentation_splices_to_the_same_code(width, tabs):
+    result = splice(STUB, _reindent(GOOD, width, tabs), "controller.py")
+    assert not result.errors
+    assert same_code(result.text, GOOD)
+    assert result.outside_edits == []
