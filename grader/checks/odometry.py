@@ -127,24 +127,25 @@ def course_test(ctx: Context) -> Outcome:
     ticks, poses = ref.go_to_angle_run(spec, v=0.1, theta_d=math.pi / 4, steps=25, dt=0.05)
     steps = [[r - pr, lt - pl] for (r, lt), (pr, pl) in zip(ticks, [(0, 0), *ticks[:-1]], strict=False)]
     est = _estimates(ctx, steps, [0.0, 0.0, 0.0])[-1]
-    reference = [0.0, 0.0, 0.0]
+    reference, slack = [0.0, 0.0, 0.0], 1e-9
     for d_r, d_l in steps:
         reference = list(ref.odometry_step(spec, reference, d_r, d_l))
+        d_c = (d_r + d_l) / 2 * ref.m_per_tick(spec)
+        phi = (d_r - d_l) * ref.m_per_tick(spec) / spec.wheel_base_length
+        slack += abs(d_c * phi) / 2  # how far the midpoint or exact-arc variants may differ from the course's
     true = poses[-1]
-    errors = [abs((t - e) / t) for t, e in zip(true, est, strict=False)]
-    allowed = [abs((t - e) / t) + 0.02 for t, e in zip(true, reference, strict=False)]
-    details = {"relative_errors": errors, "allowed": allowed, "true_pose": list(true), "estimate": est}
-    names = ("x", "y", "theta")
-    text = ", ".join(f"{n} {e:.3f}" for n, e in zip(names, errors, strict=False))
-    for name, err, limit in zip(names, errors, allowed, strict=False):
-        if err > limit:
-            return Outcome(
-                0.0,
-                f"after 25 steps of go-to-angle (v = 0.1, theta_d = pi/4) the relative errors "
-                f"were {text}; {name} may be off by at most {limit:.3f}",
-                details,
-            )
-    return Outcome(1.0, f"relative errors after 25 steps: {text} (the course's test)", details)
+    errors = [abs((t - e) / t) for t, e in zip(true, est, strict=True)]
+    course = ", ".join(f"{n} {e:.3f}" for n, e in zip(("x", "y", "theta"), errors, strict=True))
+    off = math.dist(est[:2], reference[:2])
+    details = {"relative_errors": errors, "true_pose": list(true), "estimate": est,
+               "expected_estimate": reference, "allowed_position_difference": slack}
+    if off > slack or ref.angle_diff(est[2], reference[2]) > _TOL:
+        mine = f"({fmt(est[0])}, {fmt(est[1])}, {fmt(est[2])})"
+        want = f"({fmt(reference[0])}, {fmt(reference[1])}, {fmt(reference[2])})"
+        return Outcome(0.0, f"after 25 steps of go-to-angle (v = 0.1, theta_d = pi/4) your estimate was "
+                            f"{mine}, "
+                            f"expected about {want}; relative errors to the true pose: {course}", details)
+    return Outcome(1.0, f"relative errors after 25 steps: {course} (the course's test)", details)
 
 
 ODOMETRY_CHECKS = [
