@@ -114,26 +114,40 @@ def find_blocks(text: str, file: str) -> list[Block]:
 def _scopes(lines: list[str], spans: list[tuple[int, int, str, str]]) -> list[str]:
     """The enclosing def/class path of each block.
 
-    The block bodies are replaced by a `pass` on the START line so that the rest of the file parses even when
-    a body does not; if even that fails (edits outside the blocks), fall back to reading indentation."""
-    skeleton = list(lines)
-    for s, e, indent, _ in spans:
-        skeleton[s] = indent + "pass\n"
-        for k in range(s + 1, e + 1):
-            skeleton[k] = "\n"
-    try:
-        tree = ast.parse("".join(skeleton))
-    except (SyntaxError, ValueError):
-        return [_scope_by_indent(lines, s, len(indent)) for s, _, indent, _ in spans]
-    defs = [n for n in ast.walk(tree) if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))]
-    result = []
-    for s, _, _, _ in spans:
-        line = s + 1
-        chain = sorted(
-            (n for n in defs if n.lineno < line <= (n.end_lineno or n.lineno)), key=lambda n: n.lineno
-        )
-        result.append(".".join(n.name for n in chain) or MODULE_SCOPE)
-    return result
+    Each block is replaced by a `pass` on its START line so that the rest of the file parses even when a body
+    does not. The `pass` goes at the marker's indentation, or else at the body's (a marker moved to column 0
+    inside a method); if neither parses (edits outside the blocks), the scope is read from indentation."""
+    marker_indents = [len(indent) for _, _, indent, _ in spans]
+    body_indents = [_body_indent(lines[s + 1 : e]) or len(indent) for s, e, indent, _ in spans]
+    for indents in (marker_indents, body_indents):
+        skeleton = list(lines)
+        for (s, e, _, _), width in zip(spans, indents, strict=True):
+            skeleton[s] = " " * width + "pass\n"
+            skeleton[s + 1 : e + 1] = ["\n"] * (e - s)
+        try:
+            tree = ast.parse("".join(skeleton))
+        except (SyntaxError, ValueError):
+            continue
+        defs = [
+            n for n in ast.walk(tree) if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
+        ]
+        result = []
+        for s, _, _, _ in spans:
+            chain = sorted(
+                (n for n in defs if n.lineno <= s < (n.end_lineno or n.lineno)), key=lambda n: n.lineno
+            )
+            result.append(".".join(n.name for n in chain) or MODULE_SCOPE)
+        return result
+    return [
+        _scope_by_indent(lines, s, max(m, b))
+        for (s, _, _, _), m, b in zip(spans, marker_indents, body_indents, strict=True)
+    ]
+
+
+def _body_indent(body: list[str]) -> int:
+    """Smallest indentation (tabs as 8 columns) of the body's code lines; 0 if it has none."""
+    code = [ln.expandtabs(8) for ln in body if ln.strip() and not ln.lstrip().startswith("#")]
+    return min((len(ln) - len(ln.lstrip()) for ln in code), default=0)
 
 
 DEF_LINE = re.compile(r"^([ \t]*)(?:async\s+)?(?:def|class)\s+([A-Za-z_]\w*)")

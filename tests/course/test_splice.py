@@ -240,3 +240,33 @@ def test_any_consistent_indentation_splices_to_the_same_code(width, tabs):
     assert not result.errors
     assert same_code(result.text, GOOD)
     assert result.outside_edits == []
+
+
+def test_markers_moved_to_column_0_still_match():
+    sub = GOOD.replace(
+        "        # START CODE BLOCK [week 3: gains]", "# START CODE BLOCK [week 3: gains]"
+    ).replace("        # END CODE BLOCK\n        self.E_k", "# END CODE BLOCK\n        self.E_k")
+    assert sub.count("\n# START CODE BLOCK") == 1
+    result = splice(STUB, sub, "controller.py")
+    assert not result.errors
+    assert same_code(result.text, GOOD)
+
+
+def test_windows_line_endings_and_bom():
+    sub = "\ufeff" + GOOD.replace("\n", "\r\n")
+    result = splice(STUB, sub.lstrip("\ufeff"), "controller.py")
+    assert not result.errors and result.outside_edits == []
+    assert same_code(result.text, GOOD)
+
+
+def test_splice_folder_reads_a_bom_and_crlf(folders):
+    stub, sub, out = folders
+    (sub / "controller.py").write_bytes(b"\xef\xbb\xbf" + GOOD.replace("\n", "\r\n").encode())
+    report = splice_folder(stub, sub, out)
+    assert report.files["controller.py"].blocks_taken == [
+        "Steer.__init__",
+        "Steer.execute",
+        "Steer.execute (block 2)",
+        "wheel_speed",
+    ]
+    assert same_code((out / "controller.py").read_text(), GOOD)
