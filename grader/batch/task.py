@@ -16,6 +16,7 @@ from pathlib import Path
 
 from grader.batch.cache import grader_fingerprint
 from grader.batch.submissions import unpack
+from grader.grading import grade_submission  # at import: a grading process loads it before its first task
 
 
 class GraderMismatch(RuntimeError):
@@ -24,8 +25,6 @@ class GraderMismatch(RuntimeError):
 
 def grade_task(task: dict) -> dict:
     """Grade one submission with :func:`grader.grading.grade_submission` (the seam every front door uses)."""
-    from grader.grading import grade_submission  # imported here so the batch plumbing loads without it
-
     expected = task.get("grader")
     if expected and expected != grader_fingerprint():
         raise GraderMismatch(f"this grading machine runs grader {grader_fingerprint()}, the batch expects "

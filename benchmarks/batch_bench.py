@@ -1,0 +1,75 @@
+"""Batch grading throughput: submissions graded per minute, per week and --jobs, with the real grader.
+
+    python benchmarks/batch_bench.py                      # weeks 3 and 4, --jobs 1 and 2, 8 submissions each
+    python benchmarks/batch_bench.py --weeks 3 --jobs 2 --n 20 --kind mixed
+
+Each run grades a fresh class (copies of solutions/weekN, or stubs, or both alternating) from scratch
+into a fresh output folder, exactly as ``grade weekN --batch DIR --jobs J --force`` would, grading
+processes' start-up included. It prints figures; it asserts nothing (timing depends on the machine).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def make_class(folder: Path, week: int, n: int, kind: str) -> None:
+    for i in range(n):
+        source = "solutions" if kind == "solutions" or (kind == "mixed" and i % 2 == 0) else "assignments"
+        shutil.copytree(ROOT / source / f"week{week}", folder / f"student{i:03d}")
+
+
+def bench(week: int, jobs: int, n: int, kind: str, sandbox: str) -> dict:
+    from grader.batch.runner import BatchOptions, run_batch
+
+    with tempfile.TemporaryDirectory(prefix="simiam-bench-") as tmp:
+        klass, out = Path(tmp) / "class", Path(tmp) / "out"
+        make_class(klass, week, n, kind)
+        began = time.perf_counter()
+        report = run_batch(BatchOptions(week=week, batch_dir=klass, out=out, seed=2014, jobs=jobs,
+                                        quiet=True, force=True, sandbox=sandbox))
+        seconds = time.perf_counter() - began
+        results = [json.loads(p.read_text()) for p in out.glob("student*.json")]
+    grading = [r.get("timing", {}).get("total_seconds") for r in results]
+    grading = [g for g in grading if isinstance(g, (int, float))]
+    harness = [r["timing"]["batch_seconds"] - r["timing"]["total_seconds"] for r in results
+               if isinstance(r.get("timing", {}).get("total_seconds"), (int, float))]
+    return {"week": week, "jobs": jobs, "n": n, "seconds": seconds, "per_minute": 60 * n / seconds,
+            "graded": report["counts"]["graded"],
+            "isolation": sorted({str(r.get("isolation")) for r in results}),
+            "grade_s": sum(grading) / len(grading) if grading else float("nan"),
+            "overhead_s": sorted(harness)[len(harness) // 2] if harness else float("nan")}
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--weeks", type=int, nargs="+", default=[3, 4])
+    parser.add_argument("--jobs", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--n", type=int, default=8, help="submissions per run")
+    parser.add_argument("--kind", choices=["solutions", "stubs", "mixed"], default="solutions")
+    parser.add_argument("--sandbox", default="auto", help="auto | bwrap | subprocess")
+    args = parser.parse_args(argv)
+    print(f"{'week':>4} {'jobs':>4} {'n':>4} {'seconds':>8} {'subs/min':>9} {'grade s':>8} "
+          f"{'overhead s':>10}  isolation", flush=True)
+    for week in args.weeks:
+        for jobs in args.jobs:
+            row = bench(week, jobs, args.n, args.kind, args.sandbox)
+            missing = "" if row["graded"] == row["n"] else f"  (only {row['graded']} graded)"
+            print(f"{row['week']:>4} {row['jobs']:>4} {row['n']:>4} {row['seconds']:>8.1f} "
+                  f"{row['per_minute']:>9.1f} {row['grade_s']:>8.2f} {row['overhead_s']:>10.2f}  "
+                  f"{','.join(row['isolation'])}{missing}", flush=True)
+    print("grade s: mean grade_submission time per submission; overhead s: median batch time beyond it "
+          "(grading process start-up, unpacking, writing files)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
