@@ -31,6 +31,10 @@ def plate_collides(xs: Sequence[float], ys: Sequence[float], polygons: Sequence[
     for oxmin, oxmax, oymin, oymax, table in polygons:
         if pxmax < oxmin or pxmin > oxmax or pymax < oymin or pymin > oymax:
             continue
+        # only the obstacle edges whose box meets the plate's box can cross a plate edge
+        table = [e for e in table if not (pxmax < e[4] or pxmin > e[5] or pymax < e[6] or pymin > e[7])]
+        if not table:
+            continue
         for k in range(n):
             x1 = xs[k]
             y1 = ys[k]

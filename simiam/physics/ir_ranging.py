@@ -46,6 +46,10 @@ def cone_range(xs: Sequence[float], ys: Sequence[float], polygons: Sequence[Poly
     for oxmin, oxmax, oymin, oymax, table in polygons:
         if cxmax < oxmin or cxmin > oxmax or cymax < oymin or cymin > oymax:
             continue
+        # only the obstacle edges whose box meets the cone's box can cross a cone edge
+        table = [e for e in table if not (cxmax < e[4] or cxmin > e[5] or cymax < e[6] or cymin > e[7])]
+        if not table:
+            continue
         for k in range(n):
             x1 = xs[k]
             y1 = ys[k]
