@@ -168,7 +168,8 @@ def parse_settings(path: Path, text: str | None = None, name: str | None = None)
 
 def load_world(name_or_path: str | Path) -> World:
     """A packaged world by name ("week1".."week5", "final") or a settings.xml file by path."""
-    if isinstance(name_or_path, str) and "/" not in name_or_path and not name_or_path.endswith(".xml"):
+    if (isinstance(name_or_path, str) and "/" not in name_or_path and not name_or_path.endswith(".xml")
+            and not Path(name_or_path).is_file()):
         path = world_path(name_or_path)
         if not path.is_file():
             known = sorted(p.stem for p in path.parent.glob("*.xml"))
