@@ -68,6 +68,16 @@ class Block:
         return f"{self.scope} (block {self.occurrence})" if self.occurrence > 1 else self.scope
 
 
+_LINE = re.compile(r"[^\r\n]*(?:\r\n|\n|\r)|[^\r\n]+$")
+
+
+def source_lines(text: str, keepends: bool = True) -> list[str]:
+    """Lines as Python counts them: split at \\n, \\r\\n and \\r only (str.splitlines also splits at form
+    feeds and Unicode separators, which would put error lines off and could fake a marker line)."""
+    lines = _LINE.findall(text)
+    return lines if keepends else [ln.rstrip("\r\n") for ln in lines]
+
+
 def marker(line: str) -> re.Match | None:
     """The START/END marker match of one line, or None."""
     return _MARKER.match(line.rstrip("\r\n"))
@@ -75,7 +85,7 @@ def marker(line: str) -> re.Match | None:
 
 def find_blocks(text: str, file: str) -> list[Block]:
     """All code blocks of `text`, in order. Raises BlockError for unbalanced or nested markers."""
-    lines = text.splitlines(keepends=True)
+    lines = source_lines(text)
     spans: list[tuple[int, int, str, str]] = []  # (start index, end index, indent, tag)
     open_at: int | None = None
     open_indent = open_tag = ""
@@ -175,7 +185,7 @@ def _scope_by_indent(lines: list[str], start: int, indent: int) -> str:
 def def_line(text: str, scope: str) -> int:
     """The line of the `def`/`class` that ends `scope` (0 if not found)."""
     name = scope.rsplit(".", 1)[-1]
-    for i, line in enumerate(text.splitlines(), start=1):
+    for i, line in enumerate(source_lines(text, keepends=False), start=1):
         m = DEF_LINE.match(line)
         if m and m.group(2) == name:
             return i
@@ -184,7 +194,7 @@ def def_line(text: str, scope: str) -> int:
 
 def dedent_body(body: str) -> str:
     """The body with its common indentation removed (tabs count as 8 columns, comment lines do not count)."""
-    lines = [ln.rstrip("\r\n") for ln in body.splitlines()]
+    lines = source_lines(body, keepends=False)
     lines = [_expand_leading_tabs(ln) for ln in lines]
     code = [ln for ln in lines if ln.strip() and not ln.lstrip().startswith("#")]
     common = min((len(ln) - len(ln.lstrip()) for ln in code), default=0)
@@ -202,7 +212,7 @@ def _expand_leading_tabs(line: str) -> str:
 
 def indent_body(dedented: str, indent: str) -> str:
     """Put a dedented body at `indent` (blank lines stay empty)."""
-    return "".join(indent + ln if ln.strip() else "\n" for ln in dedented.splitlines(keepends=True))
+    return "".join(indent + ln if ln.strip() else "\n" for ln in source_lines(dedented))
 
 
 def fingerprint(body: str) -> str | None:
@@ -217,12 +227,12 @@ def fingerprint(body: str) -> str | None:
 
 def replace_bodies(text: str, blocks: list[Block], bodies: dict[int, str]) -> str:
     """`text` with the body of block `ordinal` replaced by `bodies[ordinal]` (already indented)."""
-    lines = text.splitlines(keepends=True)
+    lines = source_lines(text)
     for b in sorted((b for b in blocks if b.ordinal in bodies), key=lambda b: -b.start_line):
         new = bodies[b.ordinal]
         if new and not new.endswith("\n"):
             new += "\n"
-        lines[b.start_line : b.end_line - 1] = new.splitlines(keepends=True)
+        lines[b.start_line : b.end_line - 1] = source_lines(new)
     return "".join(lines)
 
 

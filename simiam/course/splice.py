@@ -24,6 +24,7 @@ from simiam.course.blocks import (
     indent_body,
     marker,
     replace_bodies,
+    source_lines,
 )
 
 MAX_FILE_BYTES = 256 * 1024  # a student file is a few kB; anything larger is refused, not read
@@ -265,7 +266,7 @@ def _outside_lines(text: str, blocks: list[Block]) -> list[tuple[int, str]]:
     for b in blocks:
         inside.update(range(b.start_line + 1, b.end_line))
     out = []
-    for n, line in enumerate(text.splitlines(), start=1):
+    for n, line in enumerate(source_lines(text, keepends=False), start=1):
         if n in inside:
             continue
         m = marker(line)

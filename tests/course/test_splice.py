@@ -270,3 +270,14 @@ def test_splice_folder_reads_a_bom_and_crlf(folders):
         "wheel_speed",
     ]
     assert same_code((out / "controller.py").read_text(), GOOD)
+
+
+def test_lines_are_counted_as_python_counts_them():
+    """A form feed or a Unicode line separator is not a new line: no fake marker, no shifted line numbers."""
+    sub = GOOD.replace(
+        "        self.Kp = 4.0\n", '        self.Kp = 4.0\n        s = "\u2028# END CODE BLOCK"\n\x0c\n'
+    )
+    sub = sub.replace("        e_k = theta_g - theta\n", "        e_k = (theta_g - theta\n")
+    result = splice(STUB, sub, "controller.py")
+    assert "Steer.__init__" in result.blocks_taken
+    assert [(e.line, "never closed" in e.message) for e in result.errors] == [(20, True)]
