@@ -12,11 +12,10 @@ import math
 from simiam.physics.transform import transform_point
 from simiam.robot.rounding import round_half_away
 
-# Highest power first, as MATLAB's polyval takes them.
 Point = tuple[float, float]
 
+# V(d), highest power first as MATLAB's polyval takes them: polyfit(table_d, table_V, 5) of the original.
 VOLTAGE_COEFFS = (-10749.324, 10994.428, -4448.079, 906.570, -98.411, 5.496)
-
 
 
 def ir_voltage(d: float) -> float:
