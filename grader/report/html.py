@@ -38,7 +38,9 @@ METRICS: dict[str, tuple[str, str]] = {
     "seconds": ("simulated", "s"),
 }
 RUN_LABELS = ("label", "goal", "theta_d", "world")
-REPLAY_ROWS = 1000          # rows per embedded replay: a 60 s run at dt 0.033 is thinned to every 2nd step
+# Rows per embedded replay: at most 1000, and about 3000 over the whole report, so a report with four 60 s
+# runs stays well under 1 MB (each thinned to every 3rd step); short runs keep every step.
+REPLAY_ROWS, REPORT_ROWS = 1000, 3000
 STATUS_WORDS = {"passed": "passed", "failed": "failed", "error": "error", "timeout": "timed out"}
 
 
@@ -87,11 +89,15 @@ def _runs(details: dict) -> list[dict]:
     return []
 
 
-def _metric_table(runs: list[dict]) -> dict | None:
-    """Columns (label, key) present in any run, rows of formatted values; None if there is nothing to show."""
+def _metric_table(runs: list[dict], names: list[str]) -> dict | None:
+    """Columns (label, key) present in any run, rows of formatted values; None if there is nothing to show.
+    `names` (the runs' trace labels) head the rows when the runs carry no label of their own."""
     if not runs:
         return None
     labels = [k for k in RUN_LABELS if any(k in r for r in runs)]
+    if not labels and len(names) == len(runs):
+        runs = [{"run": name, **r} for name, r in zip(names, runs, strict=True)]
+        labels = ["run"]
     keys = [k for k in METRICS if any(k in r for r in runs)]
     if not keys:
         return None
@@ -135,7 +141,7 @@ def _slug(text: str) -> str:
 
 
 def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
-               hrefs: dict[str, str]) -> list[dict]:
+               hrefs: dict[str, str], max_rows: int = REPLAY_ROWS) -> list[dict]:
     from simiam.viewer.replay import TraceFormatError, render_replay
 
     views = []
@@ -168,19 +174,21 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
         elif replays == "inline" and not view["href"]:
             try:
                 title = f"{check.get('id', '')}: {label}"
-                view["srcdoc"] = render_replay(trace, title=title, max_rows=REPLAY_ROWS)
+                view["srcdoc"] = render_replay(trace, title=title, max_rows=max_rows)
             except TraceFormatError as exc:
                 view["problem"] = f"no replay: {exc}"
         views.append(view)
     return views
 
 
-def _check_view(check: dict, traces: dict, replays: str, hrefs: dict[str, str]) -> dict:
+def _check_view(check: dict, traces: dict, replays: str, hrefs: dict[str, str],
+                max_rows: int = REPLAY_ROWS) -> dict:
     details = check.get("details") if isinstance(check.get("details"), dict) else {}
     runs = _runs(details)
     shown = {"runs", "counterexample", "replay", "traces", "stdout", "stderr", "case"} | set(METRICS)
     extra = {k: v for k, v in details.items() if k not in shown}
     status = str(check.get("status", ""))
+    views = _run_views(check, traces, runs, replays, hrefs, max_rows)
     return {
         "id": str(check.get("id", "")), "name": str(check.get("name") or check.get("id", "")),
         "kind": str(check.get("kind", "")), "visibility": str(check.get("visibility", "") or ""),
@@ -189,10 +197,10 @@ def _check_view(check: dict, traces: dict, replays: str, hrefs: dict[str, str]) 
         "message": str(check.get("message", "") or ""), "anchor": "check-" + _slug(str(check.get("id", ""))),
         "counterexample": _case_text(details["counterexample"]) if "counterexample" in details else None,
         "replay_command": str(details["replay"]) if details.get("replay") else "",
-        "metrics": _metric_table(runs),
+        "metrics": _metric_table(runs, [str(v["label"]) for v in views]),
         "output": [(name, str(details[name])) for name in ("stdout", "stderr") if details.get(name)],
         "extra": json.dumps(extra, indent=2, default=str, allow_nan=True) if extra else "",
-        "runs": _run_views(check, traces, runs, replays, hrefs),
+        "runs": views,
     }
 
 
@@ -238,7 +246,9 @@ def render_report(result: dict, traces: dict[str, dict] | None = None, *, replay
     if not isinstance(result, dict):
         raise TypeError(f"result must be the result JSON (a dict), not {type(result).__name__}")
     traces = traces or {}
-    checks = [_check_view(c, traces, replays, replay_hrefs or {})
+    embedded = sum(1 for k in traces if k not in (replay_hrefs or {})) if replays == "inline" else 0
+    max_rows = max(300, min(REPLAY_ROWS, REPORT_ROWS // max(1, embedded)))
+    checks = [_check_view(c, traces, replays, replay_hrefs or {}, max_rows)
               for c in result.get("checks") or [] if isinstance(c, dict)]
     return _env().get_template("report.html.j2").render(summary=_summary(result, checks), checks=checks)
 

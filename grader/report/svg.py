@@ -139,7 +139,7 @@ class Chart:
                        f'stroke-width="2"{dash}/><text x="{lx + 20}" y="{h - 3}">{escape(s.label)}</text>')
             lx += 34 + 6.5 * len(s.label)
         if self.x_label:  # in the corner under the y labels, clear of the ticks and the legend
-            out.append(f'<text x="{ml - 4}" y="{h - mb + 13}" text-anchor="end" fill="#555">'
+            out.append(f'<text x="{ml - 10}" y="{h - mb + 13}" text-anchor="end" fill="#555">'
                        f'{escape(self.x_label)}</text>')
         out.append("</svg>")
         return Markup("".join(out))

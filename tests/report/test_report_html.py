@@ -143,3 +143,27 @@ def test_heading_plot_band_follows_the_reference(synthetic, goal):
     ElementTree.fromstring(picture)
     assert ("true position to goal" in picture) == (goal is not None)
     assert picture.count('fill="rgba(209,36,47,0.12)"') >= 1  # the settle band is drawn
+
+
+def test_a_check_that_measured_another_checks_run_plots_it(week3_result):
+    result, traces = week3_result
+    result["checks"].append(
+        {"id": "week3.pid.settle_time", "name": "settle time", "kind": "scenario", "visibility": "visible",
+         "points": 1.0, "max_points": 1.0, "status": "passed", "message": "settled after 1.32 s",
+         "details": {"goal": [1.0, 1.0], "settle_time": 1.32, "overshoot": 0.04}})
+    html = render_report(result, traces)
+    section = html.split('id="check-week3.pid.settle_time"', 1)[1].split("</article>", 1)[0]
+    assert 'href="#run-week3.go_to_goal.reaches_goals"' in section  # its replay is not embedded twice
+    assert "srcdoc" not in section and len(svg_elements(section)) == 2 and "settled 1.32 s" in section
+    result["checks"][-1]["details"]["goal"] = [5.0, 5.0]  # no run went there: nothing to plot
+    section = render_report(result, traces).split('id="check-week3.pid.settle_time"', 1)[1]
+    assert not svg_elements(section.split("</article>", 1)[0])
+
+
+def test_unlabelled_runs_take_their_trace_labels(week3_result):
+    result, traces = week3_result
+    for run in result["checks"][2]["details"]["runs"]:
+        del run["goal"]
+    html = render_report(result, traces, replays="none")
+    table = html.split('<table class="metrics">', 1)[1].split("</table>", 1)[0]
+    assert "<th>run</th>" in table and "<td>goal (1, 1)</td>" in table and "<td>goal (2, -0.3)</td>" in table
