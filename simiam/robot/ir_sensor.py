@@ -7,6 +7,7 @@ contradicts its own table).
 
 from __future__ import annotations
 
+import functools
 import math
 
 from simiam.physics.transform import transform_point
@@ -50,6 +51,7 @@ def cone_polygon(r: float, spread: float) -> tuple[Point, ...]:
     return ((0.0, 0.0), (a2, r2), (a1, r1), (r, 0.0), (a1, -r1), (a2, -r2))
 
 
+@functools.lru_cache(maxsize=64)
 def mounted_cone(mount: tuple[float, float, float], r: float, spread: float) -> tuple[Point, ...]:
     """The cone of range r in the robot frame: the sensor-frame cone moved by T(mount), as the original
     stores it (apex first, so the apex is the sensor position)."""
