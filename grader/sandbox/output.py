@@ -7,8 +7,13 @@ a "100/100" or a fake result JSON printed by student code is only shown back to 
 
 from __future__ import annotations
 
+import fcntl
 import os
+import select
+import struct
+import termios
 import threading
+import time
 
 
 class CappedOutput:
@@ -20,24 +25,37 @@ class CappedOutput:
         self._kept = bytearray()
         self._lock = threading.Lock()
         self._fd = fd
+        self._eof = False
         self._thread = threading.Thread(target=self._drain, name="sandbox-output", daemon=True)
         self._thread.start()
 
     def _drain(self) -> None:
         try:
             while True:
-                data = os.read(self._fd, 1 << 16)
-                if not data:
-                    break
-                with self._lock:
+                select.select([self._fd], [], [])
+                with self._lock:  # held from read to append, so settle() sees every byte accounted
+                    data = os.read(self._fd, 1 << 16)
+                    if not data:
+                        self._eof = True
+                        break
                     room = self.cap - len(self._kept)
                     if room > 0:
                         self._kept += data[:room]
                     self.total += len(data)
         except OSError:
-            pass
+            self._eof = True
         finally:
             os.close(self._fd)
+
+    def settle(self, timeout: float = 0.5) -> None:
+        """Wait until everything already written to the pipe has been read (the worker flushes its
+        streams before answering, so after an answer this makes its output complete)."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            with self._lock:
+                if self._eof or _pending(self._fd) == 0:
+                    return
+            time.sleep(0.001)
 
     def join(self, timeout: float = 1.0) -> None:
         """Wait for the writer side to close (all worker processes gone)."""
@@ -56,3 +74,11 @@ class CappedOutput:
         if dropped:
             text += f"\n[... {dropped} more bytes of output not kept]"
         return text
+
+
+def _pending(fd: int) -> int:
+    """Bytes waiting in the pipe (FIONREAD)."""
+    try:
+        return struct.unpack("i", fcntl.ioctl(fd, termios.FIONREAD, b"\0\0\0\0"))[0]
+    except OSError:
+        return 0

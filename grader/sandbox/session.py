@@ -72,6 +72,7 @@ class StudentSession:
         """What the student's code printed (stdout and stderr together), truncated for feedback."""
         texts = [o.text() for o in self._outputs]
         if self._worker is not None:
+            self._worker.output.settle()
             texts.append(self._worker.output.text())
         return "\n".join(t for t in texts if t)
 

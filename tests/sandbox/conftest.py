@@ -51,12 +51,17 @@ def _modes() -> list:
 
 @pytest.fixture(params=_modes())
 def mode(request) -> str:
+    """Both isolation modes: for attacks whose outcome depends on the isolation."""
     return request.param
 
 
 @pytest.fixture
-def open_session(shared_dir, mode):
-    """open_session(attack, **limits) -> a StudentSession on that attack, closed at teardown."""
+def one_mode(request) -> str:
+    """The mode "auto" picks: for attacks handled by the protocol alone (same in both modes)."""
+    return BWRAP if bwrap_works()[0] else SUBPROCESS
+
+
+def _session_factory(shared_dir: Path, mode: str):
     sessions: list[StudentSession] = []
 
     def make(attack: str, limits: Limits = LIMITS) -> StudentSession:
@@ -66,6 +71,22 @@ def open_session(shared_dir, mode):
         sessions.append(session)
         return session
 
+    return make, sessions
+
+
+@pytest.fixture
+def open_session(shared_dir, mode):
+    """open_session(attack, limits) -> a StudentSession on that attack in each mode, closed at teardown."""
+    make, sessions = _session_factory(shared_dir, mode)
+    yield make
+    for session in sessions:
+        session.close()
+
+
+@pytest.fixture
+def open_one(shared_dir, one_mode):
+    """Like open_session, in the one mode "auto" picks."""
+    make, sessions = _session_factory(shared_dir, one_mode)
     yield make
     for session in sessions:
         session.close()

@@ -31,14 +31,14 @@ def _uid(session) -> int | None:
     return session._worker.plan.uid if session._worker else None
 
 
-def test_honest_submission_answers(open_session):
-    session = open_session("_honest")
+def test_honest_submission_answers(open_one):
+    session = open_one("_honest")
     assert session.load()["errors"] == []
     assert honest_probe(session) == pytest.approx(HONEST)
 
 
-def test_sys_exit_at_import_is_a_load_error(open_session):
-    session = open_session("exit_at_import")
+def test_sys_exit_at_import_is_a_load_error(open_one):
+    session = open_one("exit_at_import")
     errors = session.load()["errors"]
     assert [e["file"] for e in errors] == ["differential_drive.py"]
     assert "SystemExit" in errors[0]["message"]
@@ -55,8 +55,8 @@ def test_os_exit_at_import_fails_every_call_without_restarting(open_session):
     assert session.starts == 1
 
 
-def test_sys_exit_mid_run_is_a_student_error_with_the_line(open_session):
-    session = open_session("exit_mid_run")
+def test_sys_exit_mid_run_is_a_student_error_with_the_line(open_one):
+    session = open_one("exit_mid_run")
     with pytest.raises(StudentError, match=r"sys.exit\(0\)") as caught:
         attack(session)
     assert (caught.value.type_name, caught.value.file) == ("SystemExit", "differential_drive.py")
@@ -83,23 +83,23 @@ def test_killing_the_parent_leaves_the_grader_alive(open_session):
 
 @pytest.mark.parametrize("kind, name", [("custom", "Boom"), ("interrupt", "KeyboardInterrupt"),
                                         ("generator", "GeneratorExit")])
-def test_base_exceptions_become_student_errors(open_session, kind, name):
-    session = open_session("base_exception")
+def test_base_exceptions_become_student_errors(open_one, kind, name):
+    session = open_one("base_exception")
     with pytest.raises(StudentError) as caught:
         attack(session, kind=kind)
     assert caught.value.type_name == name and caught.value.file == "differential_drive.py"
     assert honest_probe(session) == pytest.approx(HONEST)
 
 
-def test_printed_fake_results_are_only_shown_never_parsed(open_session):
-    session = open_session("fake_output")
+def test_printed_fake_results_are_only_shown_never_parsed(open_one):
+    session = open_one("fake_output")
     assert attack(session) == pytest.approx(HONEST)
     output = session.output()
     assert "100/100" in output and '"max_score": 100' in output
 
 
-def test_fake_answers_on_the_channel_are_caught_by_the_next_id(open_session):
-    session = open_session("fake_output")
+def test_fake_answers_on_the_channel_are_caught_by_the_next_id(open_one):
+    session = open_one("fake_output")
     value = attack(session, fn="forge_channel")
     # The forged line can only stand in for the student's own return value (the grader validates it)...
     assert value in ([100, 100], pytest.approx(HONEST))
@@ -117,13 +117,13 @@ def test_forged_files_and_detached_writers(open_session, shared_dir, mode):
     canary.mkdir()
     canary.chmod(0o777)
     session = open_session("forge_files")
-    written = attack(session, targets=[str(out), str(canary)], delay=0.8)
+    written = attack(session, targets=[str(out), str(canary)], delay=0.4)
     uid = _uid(session)
     assert not any(w.startswith(str(out)) for w in written)  # the output folder is never writable
     if mode == BWRAP:
         assert written == []                                 # nothing outside is even visible
     session.close()
-    time.sleep(1.2)  # the detached writer would have woken up by now
+    time.sleep(0.8)  # the detached writer would have woken up by now
     assert sorted(p.name for p in out.iterdir()) == ["week1.json"]
     assert (out / "week1.json").read_text() == '{"score": 3}'
     assert not [p for p in canary.iterdir() if p.name.startswith("later-")]
@@ -131,8 +131,8 @@ def test_forged_files_and_detached_writers(open_session, shared_dir, mode):
         assert not _uid_alive(uid)
 
 
-def test_monkeypatching_stays_inside_the_worker(open_session):
-    session = open_session("monkeypatch")
+def test_monkeypatching_stays_inside_the_worker(open_one):
+    session = open_one("monkeypatch")
     value = attack(session)
     # The patched to_json mangled the answer inside the worker; what came back is still plain JSON,
     # checked by the grader's own (unpatched) code.
@@ -149,29 +149,29 @@ def test_monkeypatching_stays_inside_the_worker(open_session):
 
 @pytest.mark.parametrize("kind, message", [("eq", "a Liar object"), ("float_subclass", "a LyingFloat object"),
                                            ("huge_int", "integer too large"), ("deep", "nested more than")])
-def test_values_without_json_form_are_refused_by_name(open_session, kind, message):
-    session = open_session("evil_objects")
+def test_values_without_json_form_are_refused_by_name(open_one, kind, message):
+    session = open_one("evil_objects")
     with pytest.raises(StudentError, match=message) as caught:
         attack(session, kind=kind)
     assert "cannot be sent to the grader" in str(caught.value)
 
 
 @pytest.mark.parametrize("kind, message", [("nan", "NaN"), ("inf", "infinity")])
-def test_nonfinite_values_cross_and_fail_validation(open_session, kind, message):
-    session = open_session("evil_objects")
+def test_nonfinite_values_cross_and_fail_validation(open_one, kind, message):
+    session = open_one("evil_objects")
     value = attack(session, kind=kind)
     with pytest.raises(validate.BadValue, match=f"your uni_to_diff returned \\(item 1\\) {message}"):
         validate.as_float_list(value, 2, "your uni_to_diff returned")
 
 
-def test_huge_floats_are_numbers_far_from_the_answer(open_session):
-    session = open_session("evil_objects")
+def test_huge_floats_are_numbers_far_from_the_answer(open_one):
+    session = open_one("evil_objects")
     value = validate.as_float_list(attack(session, kind="huge_float"), 2)
     assert value == [1e308, -1e308] and value != pytest.approx(HONEST)
 
 
-def test_an_oversized_answer_breaks_the_protocol(open_session):
-    session = open_session("evil_objects")
+def test_an_oversized_answer_breaks_the_protocol(open_one):
+    session = open_one("evil_objects")
     with pytest.raises(WorkerDied, match="exceeds"):
         attack(session, kind="big_string")
 
@@ -209,8 +209,8 @@ def test_network(open_session, mode):
 
 
 @pytest.mark.parametrize("fn", ["attack", "attack_numpy"])
-def test_allocating_gigabytes_is_a_memory_error(open_session, fn):
-    session = open_session("allocate")
+def test_allocating_gigabytes_is_a_memory_error(open_one, fn):
+    session = open_one("allocate")
     with pytest.raises(StudentError, match="Memory"):
         attack(session, fn=fn, gb=4)
     assert honest_probe(session) == pytest.approx(HONEST)
@@ -228,8 +228,8 @@ def test_fork_bomb_is_contained_and_killed(open_session):
     assert not _uid_alive(uid)
 
 
-def test_printing_100_mb_keeps_only_the_first_bytes(open_session):
-    session = open_session("flood_output", Limits(call_seconds=10.0, output_bytes=64 * 1024))
+def test_printing_100_mb_keeps_only_the_first_bytes(open_one):
+    session = open_one("flood_output", Limits(call_seconds=10.0, output_bytes=64 * 1024))
     assert attack(session, mb=100) == pytest.approx(HONEST)
     output = session.output()
     assert len(output) < 64 * 1024 + 100
@@ -247,8 +247,8 @@ def test_infinite_loop_times_out_and_the_worker_is_replaced(open_session):
     assert session.starts == 2
 
 
-def test_sleeping_past_the_limit_until_the_budget_is_spent(open_session):
-    session = open_session("sleep", Limits(call_seconds=0.6, total_seconds=1.5))
+def test_sleeping_past_the_limit_until_the_budget_is_spent(open_one):
+    session = open_one("sleep", Limits(call_seconds=0.6, total_seconds=1.5))
     with pytest.raises(StudentTimeout):
         attack(session)
     with pytest.raises(StudentTimeout):
@@ -260,11 +260,11 @@ def test_sleeping_past_the_limit_until_the_budget_is_spent(open_session):
     assert session.seconds_used < 2.5
 
 
-def test_robot_limits_changed_in_the_worker_stay_there(open_session):
+def test_robot_limits_changed_in_the_worker_stay_there(open_one):
     from simiam.robot.quickbot import spec_for_week
 
     before = spec_for_week(3).max_vel
-    session = open_session("robot_limits")
+    session = open_one("robot_limits")
     attack(session)
     assert spec_for_week(3).max_vel == before < 1e9
 
@@ -298,7 +298,7 @@ def test_the_worker_sees_no_secrets_and_no_repository(open_session, mode, monkey
     assert sys.executable  # the grader itself is untouched
 
 
-def test_probes_outside_the_allow_list_are_refused(open_session):
-    session = open_session("_honest")
+def test_probes_outside_the_allow_list_are_refused(open_one):
+    session = open_one("_honest")
     with pytest.raises(StudentError, match="no probe named 'not_allowed'"):
         session.call("probe", name="not_allowed", args={})

@@ -1,0 +1,22 @@
+"""Naive versions a first attempt might write, each with the hole the real one closes."""
+
+import json
+
+
+def decode(line: bytes) -> dict:
+    """Plain json.loads: accepts NaN/Infinity tokens, duplicate keys, any size, non-objects."""
+    return json.loads(line)
+
+
+def as_float(x, what="the value"):
+    """float(x): accepts bools, numeric strings, NaN, and calls a student's __float__."""
+    return float(x)
+
+
+def to_json(value, depth=0):
+    """Trusts __float__ of anything number-like: a lying object crosses as a 'number'."""
+    if isinstance(value, (list, tuple)):
+        return [to_json(v) for v in value]
+    if hasattr(value, "__float__"):
+        return float(value)
+    return value
