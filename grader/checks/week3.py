@@ -102,13 +102,17 @@ def gives_up_v(ctx: Context) -> Outcome:
     )
 
 
-def seeded_goals(seed: int, n: int, salt: str) -> list[tuple[float, float]]:
-    """Goals inside the week-3 arena, at least 0.5 m away and not straight ahead of the start."""
+def seeded_goals(seed: int, n: int, salt: str, turn: tuple[float, float] = (0.35, math.pi)
+                 ) -> list[tuple[float, float]]:
+    """Goals inside the week-3 arena, at least 0.5 m away, needing a turn in `turn` (rad) from the start.
+
+    For settle and overshoot the turn is kept near the course's pi/2: a 10 % band around a small heading
+    is narrower than one encoder tick of heading."""
     rng = random.Random(f"{seed}:{salt}")
     goals: list[tuple[float, float]] = []
     while len(goals) < n:
         g = (round(rng.uniform(-1.1, 1.1), 2), round(rng.uniform(-1.1, 1.1), 2))
-        if math.hypot(*g) >= 0.5 and abs(math.atan2(g[1], g[0])) >= 0.35:
+        if math.hypot(*g) >= 0.5 and turn[0] <= abs(math.atan2(g[1], g[0])) <= turn[1]:
             goals.append(g)
     return goals
 
@@ -194,7 +198,7 @@ def overshoot(ctx: Context) -> Outcome:
 
 
 def tracking_other_goal(ctx: Context) -> Outcome:
-    goal = seeded_goals(ctx.seed, 1, "tracking")[0]
+    goal = seeded_goals(ctx.seed, 1, "tracking", (1.0, 2.2))[0]
     r, m = _tracking(ctx, "week3.pid.tracking_other_goal", goal)
     if r.problem:
         return Outcome(0.0, r.problem, m, status=scenarios.fatal_status(ctx))

@@ -31,6 +31,7 @@ ALL = (
 )
 V = 0.15  # the scenario's speed (the original's 0.9 is capped by ensure_w and crashes its own AO)
 SECONDS = 60.0
+HIDDEN_SECONDS = 30.0  # each hidden variant was checked for 60 s with the reference solution
 MIN_PATH = 1.0  # "really moving": at least this many metres driven in the run
 POSE = [0.3, -0.2, 0.7]
 
@@ -257,7 +258,7 @@ def other_starts(ctx: Context) -> Outcome:
     good, lines, runs = 0, [], []
     for v in picks:
         world = _variant(load_world("week4"), v["turn"], v["of"], v["mirror"])
-        ok, text, details = _avoid(ctx, "week4.avoid.other_starts", world, world.name, SECONDS)
+        ok, text, details = _avoid(ctx, "week4.avoid.other_starts", world, world.name, HIDDEN_SECONDS)
         good += ok
         lines.append(f"{world.name}: {text}")
         runs.append({"variant": v, **details})
@@ -294,7 +295,7 @@ CHECKS = [
     ),
     Check(
         "week4.avoid.other_starts",
-        "60 s in variants of the week-4 world drawn per seed",
+        "30 s in variants of the week-4 world drawn per seed",
         "scenario",
         1.5,
         other_starts,
