@@ -28,6 +28,7 @@ from simiam.course.blocks import (
 )
 
 MAX_FILE_BYTES = 256 * 1024  # a student file is a few kB; anything larger is refused, not read
+MAX_DIFF_LINES = 3000  # the outside diff is quadratic at worst: beyond this, one summary entry
 
 
 # ----------------------------------------------------------------------------------------------- splicing
@@ -167,6 +168,12 @@ def check_body(
     dedented = dedent_body(sub_block.body)
     try:
         ast.parse(dedented)
+    except (RecursionError, MemoryError, ValueError) as e:  # absurdly nested code, or NUL bytes
+        return None, BlockError(
+            file,
+            sub_block.start_line,
+            f"the code block of {sub_block.describe()} cannot be read: {type(e).__name__}",
+        )
     except SyntaxError as e:
         return None, BlockError(
             file,
@@ -177,7 +184,7 @@ def check_body(
     text = replace_bodies(stub_text, stub_blocks, {target.ordinal: body})
     try:
         compile(text, file, "exec", dont_inherit=True)
-    except (SyntaxError, ValueError) as e:
+    except (SyntaxError, ValueError, RecursionError, MemoryError) as e:
         line = getattr(e, "lineno", None) or 0
         offset = line - target.start_line
         in_block = 0 < offset <= body.count("\n")
@@ -206,9 +213,7 @@ def splice(stub_text: str, submission_text: str, filename: str) -> SpliceResult:
     try:
         sub_blocks = find_blocks(submission_text, filename)
     except BlockError as e:
-        result.errors.append(
-            BlockError(e.file, e.line, e.message + " (no block of this file can be taken)")
-        )
+        result.errors.append(BlockError(e.file, e.line, e.message + " (no block of this file can be taken)"))
         result.blocks_kept = [b.describe() for b in stub_blocks]
         return result  # no outside diff: without its blocks the whole file would be listed
     pairs, result.errors = match_blocks(stub_blocks, sub_blocks, filename, submission_text)
@@ -226,8 +231,8 @@ def splice(stub_text: str, submission_text: str, filename: str) -> SpliceResult:
     result.text = replace_bodies(stub_text, stub_blocks, bodies)
     try:
         compile(result.text, filename, "exec", dont_inherit=True)
-    except SyntaxError as e:  # each body fits alone; together they do not (cannot happen today): use the stub
-        result.errors.append(BlockError(filename, None, f"the code blocks do not compile together: {e.msg}"))
+    except (SyntaxError, ValueError, RecursionError, MemoryError) as e:  # cannot happen today: use the stub
+        result.errors.append(BlockError(filename, None, f"the code blocks do not compile together: {e}"))
         result.blocks_kept, result.blocks_taken, result.text = (
             [b.describe() for b in stub_blocks],
             [],
@@ -243,6 +248,9 @@ def outside_edits(
     """Hunks where the submission differs from the stub outside the blocks (trailing spaces ignored)."""
     a = _outside_lines(stub_text, stub_blocks)
     b = _outside_lines(sub_text, sub_blocks)
+    if max(len(a), len(b)) > MAX_DIFF_LINES:
+        last = b[-1][0] if b else 1
+        return [OutsideEdit(file, 1, last, f"+({len(b)} lines outside the blocks, the stub has {len(a)})")]
     edits = []
     # Compare without indentation: re-indenting a whole file changes nothing worth reporting.
     matcher = difflib.SequenceMatcher(

@@ -281,3 +281,18 @@ def test_lines_are_counted_as_python_counts_them():
     result = splice(STUB, sub, "controller.py")
     assert "Steer.__init__" in result.blocks_taken
     assert [(e.line, "never closed" in e.message) for e in result.errors] == [(20, True)]
+
+
+def test_hostile_sizes_are_refused_or_summarised():
+    # a huge file: blocks still taken (scopes read from indentation), the outside diff is one summary line
+    result = splice(STUB, GOOD + "x = 1\n" * 20000, "controller.py")
+    assert len(result.blocks_taken) == 4
+    [edit] = result.outside_edits
+    assert (edit.first_line, "20024 lines outside the blocks, the stub has 24" in edit.diff) == (1, True)
+    # thousands of blocks: refused at the first one too many
+    many = GOOD + "def f():\n" + "    # START CODE BLOCK\n    # END CODE BLOCK\n" * 300
+    assert "more than 200 code blocks" in str(splice(STUB, many, "controller.py").errors[0])
+    # absurdly nested or NUL bytes: an error for that block, the stub's code instead
+    for body in ("-" * 100_000 + "1", "4.0\x00"):
+        result = splice(STUB, GOOD.replace("self.Kp = 4.0", f"self.Kp = {body}"), "controller.py")
+        assert [e.line for e in result.errors] in ([8], [9]) and "Steer.__init__" in result.blocks_kept
