@@ -184,7 +184,7 @@ class _Run:
             self.pending[student.id] = (submission, key)
             task = {"student": student.id, "display": student.path.name, "week": self.options.week,
                     "seed": self.options.seed, "hidden": self.options.hidden, "sandbox": self.options.sandbox,
-                    "grader": self.grader}
+                    "grader": self.grader, "check_grader": self.options.executor == "dask"}
             if submission.refused is not None:
                 self.finish(task, {"status": "invalid", "value": None, "message": submission.refused,
                                    "seconds": 0.0})
