@@ -142,90 +142,93 @@ def plan(week: int, source: Path, target: Path) -> Migration:
     """Work out every block's fate without writing anything."""
     mig = Migration(week, source, target)
     last, this = SHIPPED.get(week - 1, {}), SHIPPED[week]
-    sources: dict[str, dict[tuple[str, int], Block]] = {}
-
-    def source_blocks(name: str) -> dict[tuple[str, int], Block] | None:
-        if name not in sources:
-            label = str(source / name)
-            found = _blocks(source, name, label, mig.errors)
-            ok = found is not None and _check_layout(
-                found[1], last[name], found[0], label, week - 1, mig.errors
-            )
-            sources[name] = {b.key: b for b in found[1]} if ok and found else None
-        return sources[name]
-
+    sources: dict[str, dict[tuple[str, int], Block] | None] = {}
     for name, rows in this.items():
         label = str(target / name)
         found = _blocks(target, name, label, mig.errors)
         if found is None or not _check_layout(found[1], rows, found[0], label, week, mig.errors):
             continue
         text, blocks = found
-        shipped = {(scope, occ): fp for scope, occ, _, _, fp in rows}
         bodies: dict[int, str] = {}
         for t in blocks:
-            spec = placeholder_for(name, t.scope, t.occurrence)
-            row = (label, t.describe())
-            if spec is None or spec.week == week:
-                mig.moves.append(BlockMove(*row, False, "new this week: yours to write", t.start_line))
-                continue
-            if week in spec.revised_in:
-                mig.moves.append(
-                    BlockMove(*row, False, f"shipped version kept: {spec.revised_why}", t.start_line)
-                )
-                continue
-            last_rows = {(scope, occ): fp for scope, occ, _, _, fp in last.get(name, [])}
-            if t.key not in last_rows:
-                mig.moves.append(BlockMove(*row, False, f"not in week {week - 1}", t.start_line))
-                continue
-            src = source_blocks(name)
-            if src is None:
-                continue  # the error is already listed
-            s = src[t.key]
-            body, err = check_body(text, blocks, t, s, str(source / name))
-            if err:
-                mig.errors.append(err)
-                continue
-            fp = fingerprint(s.body)
-            if fp == fingerprint(spec.body("")):
-                why = (
-                    f"you had not filled it in week {week - 1} (still the placeholder); shipped version kept"
-                )
-                mig.moves.append(BlockMove(*row, False, why, t.start_line))
-            elif fp == last_rows[t.key]:
-                why = f"same as the course shipped in week {week - 1}; this week's version kept"
-                mig.moves.append(BlockMove(*row, False, why, t.start_line))
-            elif fingerprint(t.body) == fp:
-                why = (
-                    "already your code (migrated before)"
-                    if fp != shipped[t.key]
-                    else "your code is the same as this week's shipped code; nothing to move"
-                )
-                mig.moves.append(BlockMove(*row, False, why, t.start_line))
-            elif fingerprint(t.body) != shipped[t.key]:
-                mig.errors.append(
-                    BlockError(
-                        label,
-                        t.start_line,
-                        f"you already changed the block of {t.describe()} "
-                        "in this week's folder; migrate will not overwrite it (undo that "
-                        "edit, or copy the block by hand)",
-                    )
-                )
-            else:
+            body = _carry(mig, name, text, blocks, t, sources)
+            if body is not None:
                 bodies[t.ordinal] = body
-                mig.moves.append(
-                    BlockMove(*row, True, f"your code from {source / name}:{s.start_line}", t.start_line)
-                )
         if bodies:
             mig.texts[name] = replace_bodies(text, blocks, bodies)
     for name, rows in last.items():
+        here = {(r[0], r[1]) for r in this.get(name, [])}
         for scope, occ, *_ in rows:
-            if (scope, occ) not in {(r[0], r[1]) for r in this.get(name, [])}:
+            if (scope, occ) not in here:
                 mig.notes.append(
                     f"{name} {scope}: not carried, week {week} has no code block there "
                     "(the course provides that code now)"
                 )
     return mig
+
+
+def _source_blocks(mig: Migration, name: str, cache: dict) -> dict[tuple[str, int], Block] | None:
+    """Last week's blocks of `name` by key, or None (with the errors listed) if the file is unusable."""
+    if name not in cache:
+        label = str(mig.source / name)
+        found = _blocks(mig.source, name, label, mig.errors)
+        expected = SHIPPED[mig.week - 1][name]
+        ok = found is not None and _check_layout(
+            found[1], expected, found[0], label, mig.week - 1, mig.errors
+        )
+        cache[name] = {b.key: b for b in found[1]} if ok and found else None
+    return cache[name]
+
+
+def _carry(mig: Migration, name: str, text: str, blocks: list[Block], t: Block, cache: dict) -> str | None:
+    """Decide the fate of this week's block `t`: record it in `mig`; return the body to write, if any."""
+    week, label = mig.week, str(mig.target / name)
+    spec = placeholder_for(name, t.scope, t.occurrence)
+
+    def keep(why: str) -> None:
+        mig.moves.append(BlockMove(label, t.describe(), False, why, t.start_line))
+
+    if spec is None or spec.week == week:
+        return keep("new this week: yours to write")
+    if week in spec.revised_in:
+        return keep(f"shipped version kept: {spec.revised_why}")
+    last_shipped = {(r[0], r[1]): r[4] for r in SHIPPED[week - 1].get(name, [])}
+    if t.key not in last_shipped:
+        return keep(f"not in week {week - 1}")
+    src = _source_blocks(mig, name, cache)
+    if src is None:
+        return None  # the errors are listed already
+    s = src[t.key]
+    body, err = check_body(text, blocks, t, s, str(mig.source / name))
+    if err:
+        mig.errors.append(err)
+        return None
+    theirs, here = fingerprint(s.body), fingerprint(t.body)
+    shipped_here = {(r[0], r[1]): r[4] for r in SHIPPED[week][name]}[t.key]
+    if theirs == fingerprint(spec.body("")):
+        return keep(f"you had not filled it in week {week - 1} (still the placeholder); shipped version kept")
+    if theirs == last_shipped[t.key]:
+        return keep(f"same as the course shipped in week {week - 1}; this week's version kept")
+    if theirs == here:
+        if here == shipped_here:
+            return keep("your code is the same as this week's shipped code; nothing to move")
+        return keep("already your code (migrated before)")
+    if here != shipped_here:
+        mig.errors.append(
+            BlockError(
+                label,
+                t.start_line,
+                f"you already changed the block of {t.describe()} in this week's folder; migrate will not "
+                "overwrite it (undo that edit, or copy the block by hand)",
+            )
+        )
+        return None
+    mig.moves.append(
+        BlockMove(
+            label, t.describe(), True, f"your code from {mig.source / name}:{s.start_line}", t.start_line
+        )
+    )
+    return body
 
 
 def write_atomically(folder: Path, texts: dict[str, str]) -> list[str]:
