@@ -76,15 +76,26 @@ class BatchOptions:
 
     @classmethod
     def from_args(cls, args: argparse.Namespace) -> BatchOptions:
-        week = int(args.week)
+        """Options from the ``grade`` parser (grader/cli.py), tolerant of what it leaves at defaults."""
         given = vars(args)
-        out = given.get("out") or Path("reports") / f"batch-week{week}"
-        return cls(week=week, batch_dir=Path(args.batch), out=Path(out), seed=int(args.seed),
+        week = parse_week(given.get("week_number") or given["week"])
+        out = given.get("out")
+        if not out or out == "reports":      # the single-submission default: keep a batch apart from it
+            out = Path("reports") / f"batch-week{week}"
+        return cls(week=week, batch_dir=Path(given["batch"]), out=Path(out), seed=int(given["seed"]),
                    jobs=int(given.get("jobs") or default_jobs()), hidden=bool(given.get("hidden")),
                    force=bool(given.get("force")), quiet=bool(given.get("quiet")),
                    executor=given.get("executor") or "local", scheduler=given.get("scheduler"),
                    sandbox=given.get("sandbox") or "auto",
                    budget_s=float(given.get("timeout") or DEFAULT_BUDGET_S))
+
+
+def parse_week(value: object) -> int:
+    """3, "3" or "week3" -> 3."""
+    text = str(value).lower().removeprefix("week")
+    if not text.isdigit():
+        raise BatchError(f"unknown week {value!r}: use week1 .. week4")
+    return int(text)
 
 
 def main(args: argparse.Namespace) -> int:

@@ -76,3 +76,18 @@ def test_a_grading_machine_with_another_grader_refuses(tmp_path: Path) -> None:
             "check_grader": True}
     with pytest.raises(GraderMismatch, match="install the same version everywhere"):
         grade_task(task)
+
+
+def test_the_grade_command_line_runs_a_batch(tmp_path: Path) -> None:
+    from grader.cli import main
+
+    klass = tmp_path / "class"
+    shutil.copytree(ROOT / "assignments" / "week2", klass / "stub")
+    (klass / "broken.zip").write_bytes(b"not a zip")
+    code = main(["week2", "--batch", str(klass), "--out", str(tmp_path / "out"), "--quiet", "--jobs", "1",
+                 "--seed", "7"])
+    assert code == 1                        # ran, but one submission is invalid
+    batch = json.loads((tmp_path / "out" / "batch.json").read_text())
+    assert batch["week"] == 2 and batch["seed"] == 7 and batch["counts"]["invalid"] == 1
+    assert json.loads((tmp_path / "out" / "stub.json").read_text())["status"] == "graded"
+    assert main(["week2", "--batch", str(tmp_path / "nowhere"), "--out", str(tmp_path / "o2")]) == 2
