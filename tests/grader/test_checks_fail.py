@@ -6,9 +6,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from wrong_submissions import ROOT, build, week_of
 
 from grader.grading import grade_submission
-from wrong_submissions import ROOT, build, week_of
 
 # visible checks each wrong version must fail (and no others)
 EXPECTED_FAILURES = {
@@ -53,7 +53,8 @@ def test_wrong_version_loses_exactly_its_checks(name: str, tmp_path: Path) -> No
 def test_solutions_score_full_marks_with_hidden_checks(week: int, seed: int) -> None:
     result = grade_submission(week, ROOT / "solutions" / f"week{week}", seed=seed, hidden=True)
     assert result["status"] == "graded"
-    assert result["score"] == result["max_score"], [c["message"] for c in result["checks"] if c["status"] != "passed"]
+    failures = [c["message"] for c in result["checks"] if c["status"] != "passed"]
+    assert result["score"] == result["max_score"], failures
 
 
 @pytest.mark.parametrize("week", [2, 3, 4])

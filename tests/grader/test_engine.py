@@ -1,0 +1,71 @@
+"""The grading engine around the checks: replay cases, feedback wording, load failures, result fields."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+from grader.cli import main as grade_main
+from grader.grading import grade_submission
+from grader.properties import format_case, parse_case
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_case_text_round_trips() -> None:
+    case = {"v": 0.1, "w": -2.0, "steps": [[1, 0], [2, -1]], "start": [0.0, 0.5, -3.14]}
+    assert parse_case(format_case(case)) == case
+    assert parse_case("v=0.1, w=\u22122.0") == {"v": 0.1, "w": -2.0}
+
+
+def test_failing_property_names_the_case_and_replays_it(tmp_path: Path) -> None:
+    folder = tmp_path / "week2"
+    shutil.copytree(ROOT / "solutions" / "week2", folder)
+    drive = folder / "differential_drive.py"
+    drive.write_text(drive.read_text().replace("(2 * v + w * L) / (2 * R)", "(2 * v + w * L) / R"))
+    result = grade_submission(2, folder, seed=5, only="week2.uni_to_diff.round_trip")
+    check = result["checks"][0]
+    assert check["status"] == "failed" and check["points"] == 0
+    assert check["message"].startswith("with v = ") and "your vel_r was" in check["message"]
+    replay = check["details"]["replay"]
+    assert "--check week2.uni_to_diff.round_trip --case '" in replay
+    case = parse_case(replay.split("--case ")[1].strip("'"))
+    again = grade_submission(2, folder, seed=5, only="week2.uni_to_diff.round_trip", case=case)
+    assert again["checks"][0]["status"] == "failed"
+    assert again["checks"][0]["message"] == check["message"]
+
+
+def test_syntax_error_fails_only_the_checks_that_need_the_file(tmp_path: Path) -> None:
+    folder = tmp_path / "week3"
+    shutil.copytree(ROOT / "solutions" / "week3", folder)
+    goal = folder / "go_to_goal.py"
+    goal.write_text(goal.read_text().replace("        u_x = x_g - x\n", "        u_x = = x_g - x\n"))
+    result = grade_submission(3, folder, seed=1)
+    assert result["status"] == "graded"
+    by_id = {c["id"]: c for c in result["checks"]}
+    assert by_id["week3.pid.proportional"]["status"] == "error"
+    assert "go_to_goal.py:" in by_id["week3.pid.proportional"]["message"]
+    assert by_id["week3.ensure_w.keeps_w"]["status"] == "passed"
+
+
+def test_nothing_loadable_is_invalid(tmp_path: Path) -> None:
+    folder = tmp_path / "week2"
+    shutil.copytree(ROOT / "assignments" / "week2", folder)
+    sup = folder / "differential_drive.py"
+    sup.write_text("import sys\nsys.exit(3)\n" + sup.read_text())  # outside the blocks: not run
+    result = grade_submission(2, folder, seed=1, only="week2.uni_to_diff.straight")
+    assert result["status"] == "graded"  # the splice dropped the edit outside the blocks
+    assert any("outside the code blocks" in n for n in result["notices"])
+    missing = grade_submission(2, tmp_path / "nowhere", seed=1)
+    assert missing["status"] == "invalid" and "no such folder" in missing["message"]
+
+
+def test_result_records_version_hash_seed_and_isolation(tmp_path: Path) -> None:
+    code = grade_main(["week1", str(ROOT / "assignments" / "week1"), "--out", str(tmp_path), "--seed", "9"])
+    assert code == 0
+    result = json.loads((tmp_path / "week1.json").read_text())
+    assert result["seed"] == 9 and result["check_set_hash"] in result["grader_version"]
+    assert result["isolation"] in ("bwrap", "subprocess")
+    assert grade_main(["week7"]) == 2
+    assert grade_main(["week2", str(tmp_path / "missing")]) == 2
