@@ -91,7 +91,7 @@
   function home() {
     var w = BOUNDS[2] - BOUNDS[0], h = BOUNDS[3] - BOUNDS[1];
     st.cx = (BOUNDS[0] + BOUNDS[2]) / 2; st.cy = (BOUNDS[1] + BOUNDS[3]) / 2;
-    st.zoom = Math.max(5, 0.92 * Math.min(st.W / Math.max(w, 0.2), st.H / Math.max(h, 0.2)));
+    st.zoom = Math.max(5, 0.92 * Math.min(st.W / Math.max(w, 0.6), st.H / Math.max(h, 0.6)));
     setFollowing(false);
     st.atHome = true;
   }
