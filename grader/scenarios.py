@@ -10,12 +10,11 @@ its trace so far.
 from __future__ import annotations
 
 import math
-import random
 from dataclasses import dataclass, field
 from typing import Any
 
 from grader import reference as ref
-from grader.checks import Context, Outcome
+from grader.checks import Context
 from grader.sandbox.errors import SandboxError
 from simiam.simulator import BrainError, Simulator, add_row
 from simiam.trace import Trace
@@ -66,7 +65,6 @@ def run(
     config = ctx.config
     world = world or load_world(config.world)
     start = start or world.start
-    settings = {**settings, "start": list(start)}
     sim_goal = World(world.name, world.obstacles, [start], goal, world.source) if goal else world
     result = Run(
         label, Trace(week=ctx.week, dt=config.dt, world=world.to_json(), robot={}, start=list(start))
@@ -155,34 +153,6 @@ def settle_and_overshoot(trace: Trace, goal: tuple[float, float]) -> tuple[float
     i = max(range(len(y)), key=lambda k: sign * y[k])
     overshoot = abs(r[i] - y[i]) / abs(r[i]) if r[i] != 0 else 1.0
     return settle, overshoot
-
-
-def go_to_angle_check(hidden: bool):
-    """Week 2: go-to-angle turns the TRUE heading to theta_d (within 0.2 rad after 8 s, no collision)."""
-
-    def go_to_angle(ctx: Context) -> Outcome:
-        if hidden:
-            rng = random.Random(f"{ctx.seed}:go_to_angle")
-            angles = [rng.choice((-1, 1)) * rng.uniform(0.3, 2.8) for _ in range(3)]
-        else:
-            angles = [math.pi / 4, -2.0]
-        good, lines, details = 0, [], {"runs": []}
-        for theta_d in angles:
-            r = run(ctx, f"theta_d = {theta_d:.3f}", {"theta_d": theta_d, "v": 0.1}, 8.0)
-            keep(ctx, "week2.go_to_angle." + ("other_angles" if hidden else "reaches_theta_d"), r)
-            err = ref.angle_diff(r.final_pose[2], theta_d)
-            ok = not r.problem and r.collision is None and err <= 0.2
-            good += ok
-            why = r.problem or (
-                "it collided" if r.collision else f"the true heading ended {err:.2f} rad away"
-            )
-            lines.append(f"theta_d = {theta_d:.2f}: " + ("reached" if ok else why))
-            details["runs"].append(
-                {"theta_d": theta_d, "heading_error": err, **r.metrics, "problem": r.problem}
-            )
-        return Outcome(good / len(angles), "; ".join(lines), details, status=fatal_status(ctx))
-
-    return go_to_angle
 
 
 def keep(ctx: Context, check_id: str, r: Run) -> None:

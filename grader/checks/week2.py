@@ -7,15 +7,16 @@ scenario runs the student's supervisor in the trusted simulator and judges the t
 from __future__ import annotations
 
 import math
+import random
 
 from hypothesis import strategies as st
 
 from grader import reference as ref
+from grader import scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import fmt, vector
 from grader.checks.odometry import ODOMETRY_CHECKS
 from grader.properties import run_property
-from grader.scenarios import go_to_angle_check
 
 DRIVE = ("differential_drive.py",)
 IR = ("quickbot.py",)
@@ -171,6 +172,34 @@ def ir_simulator(ctx: Context) -> Outcome:
         f"{len(distances)} readings within 8 % (worst {worst:.1%})",
         {"worst_relative_error": worst, "worst_at": at},
     )
+
+
+def go_to_angle_check(hidden: bool):
+    """Week 2: go-to-angle turns the TRUE heading to theta_d (within 0.2 rad after 8 s, no collision)."""
+
+    def go_to_angle(ctx: Context) -> Outcome:
+        if hidden:
+            rng = random.Random(f"{ctx.seed}:go_to_angle")
+            angles = [rng.choice((-1, 1)) * rng.uniform(0.3, 2.8) for _ in range(3)]
+        else:
+            angles = [math.pi / 4, -2.0]
+        good, lines, details = 0, [], {"runs": []}
+        for theta_d in angles:
+            r = scenarios.run(ctx, f"theta_d = {theta_d:.3f}", {"theta_d": theta_d, "v": 0.1}, 8.0)
+            scenarios.keep(ctx, "week2.go_to_angle." + ("other_angles" if hidden else "reaches_theta_d"), r)
+            err = ref.angle_diff(r.final_pose[2], theta_d)
+            ok = not r.problem and r.collision is None and err <= 0.2
+            good += ok
+            why = r.problem or (
+                "it collided" if r.collision else f"the true heading ended {err:.2f} rad away"
+            )
+            lines.append(f"theta_d = {theta_d:.2f}: " + ("reached" if ok else why))
+            details["runs"].append(
+                {"theta_d": theta_d, "heading_error": err, **r.metrics, "problem": r.problem}
+            )
+        return Outcome(good / len(angles), "; ".join(lines), details, status=scenarios.fatal_status(ctx))
+
+    return go_to_angle
 
 
 CHECKS = [
