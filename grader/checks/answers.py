@@ -6,10 +6,10 @@ object the worker could not turn into numbers arrives as {"type": name}. Only re
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from grader.checks import Mismatch
+from grader.sandbox.validate import BadValue, as_float
 
 
 def describe(value: Any) -> str:
@@ -22,6 +22,10 @@ def describe(value: Any) -> str:
         )
     if value is None:
         return "None"
+    if type(value) is bool:
+        return f"{value} (a bool)"
+    if type(value) is float and value != value:
+        return "NaN"
     if isinstance(value, list):
         return f"a list of {len(value)} values"
     text = repr(value)
@@ -29,10 +33,11 @@ def describe(value: Any) -> str:
 
 
 def number(value: Any, what: str) -> float:
-    """A finite float, or Mismatch("<what> was NaN, expected a number")."""
-    if type(value) in (int, float) and math.isfinite(value):
-        return float(value)
-    raise Mismatch(f"{what} was {describe(value)}, expected a finite number")
+    """A finite float (the sandbox's own type gate decides), or Mismatch("<what> was NaN, expected ...")."""
+    try:
+        return as_float(value, what)
+    except BadValue:
+        raise Mismatch(f"{what} was {describe(value)}, expected a finite number") from None
 
 
 def vector(value: Any, n: int, what: str) -> list[float]:
