@@ -69,3 +69,18 @@ def test_result_records_version_hash_seed_and_isolation(tmp_path: Path) -> None:
     assert result["isolation"] in ("bwrap", "subprocess")
     assert grade_main(["week7"]) == 2
     assert grade_main(["week2", str(tmp_path / "missing")]) == 2
+
+
+def test_nan_and_exceptions_get_clear_messages(tmp_path: Path) -> None:
+    folder = tmp_path / "week2"
+    shutil.copytree(ROOT / "solutions" / "week2", folder)
+    drive = folder / "differential_drive.py"
+    text = drive.read_text()
+    drive.write_text(text.replace("    vel_l = (2 * v - w * L) / (2 * R)\n", "    vel_l = float('nan')\n"))
+    nan = grade_submission(2, folder, seed=1, only="week2.uni_to_diff.straight")["checks"][0]
+    assert nan["status"] == "failed" and "was NaN, expected a finite number" in nan["message"]
+    drive.write_text(text.replace("    vel_l = (2 * v - w * L) / (2 * R)\n", "    vel_l = 1 / 0\n"))
+    crash = grade_submission(2, folder, seed=1, only="week2.uni_to_diff.straight")["checks"][0]
+    assert crash["status"] == "failed"
+    assert "ZeroDivisionError" in crash["message"] and "differential_drive.py:" in crash["message"]
+    assert crash["message"].startswith("with v = ")
