@@ -70,6 +70,9 @@ def read_submission(student: Student, limits: Limits | None = None) -> Submissio
             raise SubmissionRefused("the submission has no files")
     except SubmissionRefused as refused:
         return Submission(student, sha256=_hash_path(student.path), refused=str(refused))
+    except OSError as exc:          # unreadable file, vanished folder...: this student only
+        return Submission(student, sha256=_hash_path(student.path),
+                          refused=f"the submission could not be read ({exc.strerror or exc})")
     return Submission(student, files=files, sha256=content_hash(files), root=root)
 
 

@@ -8,6 +8,7 @@ external files), built from the per-student results only.
 from __future__ import annotations
 
 from pathlib import Path
+from urllib.parse import quote
 
 from jinja2 import Environment
 
@@ -89,7 +90,7 @@ def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) ->
     status_counts: dict[str, int] = {}
     for result in results.values():
         status_counts[str(result.get("status"))] = status_counts.get(str(result.get("status")), 0) + 1
-    students = [{"id": sid, "href": f"{stems[sid]}.html", "status": r.get("status"),
+    students = [{"id": sid, "href": quote(f"{stems[sid]}.html"), "status": r.get("status"),
                  "score": r.get("score") if isinstance(r.get("score"), (int, float)) else None,
                  "message": " ".join(str(r.get("message") or "").split())[:300]}
                 for sid, r in sorted(results.items())]

@@ -57,11 +57,13 @@ def test_summary_statistics_histogram_and_escaping() -> None:
     assert stats["week3.fake.a"]["pass_rate"] == 2 / 3 and stats["week3.fake.b"]["mean_points"] == 2.0
     assert sorted(graded_scores(results)) == [0.0, 4.0, 10.0]     # timeouts and invalids are left out
     results["<script>"] = {**results["bob"], "message": "<b>bold</b>"}
+    results["ann #2"] = {**results["bob"]}
     page = summary_html(results, {sid: sid for sid in results}, {"week": 3, "seed": 1, "grader": "g"})
     assert "<script>" not in page and "&lt;script&gt;" in page and "&lt;b&gt;" in page
     assert 'href="alice.html"' in page and 'class="plot histogram"' in page
-    assert ": 2</title></rect>" in page and ": 1</title></rect>" in page   # bob twice, alice and carl once
-    assert "75%" in page          # fake.a: alice, bob and the copy of bob pass; carl fails
+    assert ": 3</title></rect>" in page and ": 1</title></rect>" in page   # bob 3 times, alice, carl once
+    assert 'href="ann%20%232.html"' in page
+    assert "80%" in page          # fake.a: alice, bob and the two copies of bob pass; carl fails
 
 
 class Clock:

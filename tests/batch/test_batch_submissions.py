@@ -78,3 +78,16 @@ def test_hash_ignores_packaging_but_not_content(tmp_path: Path) -> None:
     assert a.sha256 == b.sha256
     assert content_hash({"go_to_goal.py": b"K = 2\n"}) != a.sha256
     assert content_hash({"go_to_goal2.py": b"K = 1\n"}) != a.sha256
+
+
+def test_a_fifo_is_refused_not_read(tmp_path: Path) -> None:
+    sub = tmp_path / "pipe"
+    sub.mkdir()
+    os.mkfifo(sub / "go_to_goal.py")         # reading it would block the batch forever
+    refused = read_submission(Student("pipe", sub, "folder"))
+    assert refused.refused and "not a regular file" in refused.refused
+
+
+def test_an_unreadable_submission_is_refused_not_raised(tmp_path: Path) -> None:
+    refused = read_submission(Student("gone", tmp_path / "gone", "folder"))
+    assert refused.refused is not None and refused.files == {}
