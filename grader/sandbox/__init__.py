@@ -1,0 +1,35 @@
+"""The isolation layer: student code runs only in a sandboxed worker process and can never forge its grade.
+
+    from grader.sandbox import StudentSession, RemoteBrain, Limits
+    with StudentSession(week, spliced_dir, Limits()) as session:    # sandbox="auto" | "bwrap" | "subprocess"
+        session.load(); session.call("probe", name=..., args={...}); session.isolation_note
+
+Modules: protocol (JSON lines on a private pipe pair), worker + worker_loop (inside the sandbox),
+isolation (bubblewrap or plain subprocess, dedicated uid), runner (start, deadlines, kill the whole tree),
+output (capped capture of stdout/stderr), limits (rlimits), workdir (private copy of the spliced folder),
+session (StudentSession, RemoteBrain), validate (type checks on untrusted values), errors, bench.
+
+What holds in every mode: the grading process never imports student code; only strict JSON crosses back
+and the grader validates it; per-call and per-submission wall limits, RLIMIT_CPU/AS/FSIZE/NOFILE/NPROC,
+no core dumps; output capped; a clean environment; as root, a dedicated unprivileged uid per worker, so the
+process limit binds and every process the student starts (setsid, double fork) is killed by uid.
+With bubblewrap in addition: no network, own PID/IPC/UTS namespaces, private size-capped /tmp, read-only
+view of only the submission copy, the Python environment, simiam and the grader's probe/sandbox modules
+(no solutions/, hidden checks, output folder or other submissions), no capabilities.
+"""
+
+from grader.sandbox.errors import SandboxError, SandboxUnavailable, StudentError, StudentTimeout, WorkerDied
+from grader.sandbox.limits import Limits
+
+
+def __getattr__(name: str):
+    # Lazy, so the worker (which imports grader.sandbox.limits) does not load the grader-side modules.
+    if name in ("RemoteBrain", "StudentSession"):
+        from grader.sandbox import session
+
+        return getattr(session, name)
+    raise AttributeError(name)
+
+
+__all__ = ["Limits", "RemoteBrain", "SandboxError", "SandboxUnavailable", "StudentError", "StudentSession",
+           "StudentTimeout", "WorkerDied"]

@@ -302,3 +302,12 @@ def test_probes_outside_the_allow_list_are_refused(open_one):
     session = open_one("_honest")
     with pytest.raises(StudentError, match="no probe named 'not_allowed'"):
         session.call("probe", name="not_allowed", args={})
+
+
+def test_cpu_time_is_capped_by_the_kernel(open_one):
+    # The wall limit is generous here, so only RLIMIT_CPU can stop the loop early.
+    session = open_one("infinite_loop", Limits(call_seconds=20.0, cpu_seconds=1))
+    began = time.monotonic()
+    with pytest.raises(WorkerDied, match="CPU time limit"):
+        attack(session)
+    print(f"CPU limit 1 s: worker ended after {time.monotonic() - began:.2f} s wall")
