@@ -7,8 +7,10 @@ stores and what the HTML report renders; the traces of scenario checks travel ne
 from __future__ import annotations
 
 import hashlib
+import importlib
 import inspect
 import json
+import sys
 from dataclasses import dataclass, field
 from importlib import metadata
 from typing import Any
@@ -53,19 +55,33 @@ def package_version() -> str:
         return "0+unknown"
 
 
+# The code that decides a score besides the checks' own functions: a change here changes the hash too.
+_SCORING_MODULES = ("grader.reference", "grader.properties", "grader.scenarios", "grader.probes",
+                    "grader.checks.answers", "grader.hidden")
+
+
 def check_set_hash(checks: list) -> str:
-    """A short hash over what decides a score: every check's id, weight, kind, visibility and scoring code.
+    """A short hash over what decides a score: every check's id, weight, kind and visibility, the source
+    of the week's check modules and of the scoring helpers, and the hidden data.
 
     Two runs with the same hash (and seed) ran the same checks the same way, so a local and an official
     result can be compared.
     """
     h = hashlib.sha256()
+    modules = set(_SCORING_MODULES)
     for check in sorted(checks, key=lambda c: c.id):
         h.update(json.dumps([check.id, check.weight, check.kind, check.visibility]).encode())
+        modules.add(getattr(check.run, "__module__", "") or "")
+    for name in sorted(m for m in modules if m):
+        module = sys.modules.get(name) or importlib.import_module(name)
         try:
-            h.update(inspect.getsource(check.run).encode())
+            h.update(inspect.getsource(module).encode())
         except (OSError, TypeError):
-            h.update(repr(check.run).encode())
+            h.update(name.encode())
+    from grader.hidden import hidden_dir
+
+    for path in sorted(hidden_dir().glob("week*.json")):
+        h.update(path.read_bytes())
     return h.hexdigest()[:16]
 
 
@@ -86,6 +102,7 @@ def submission_result(
     extra: dict[str, Any] | None = None,
 ) -> dict[str, Any]:
     """Assemble the contract's result JSON for one submission."""
+    digest = check_set_hash(checks)
     score = sum(r.points for r in results)
     max_score = sum(r.max_points for r in results)
     out: dict[str, Any] = {
@@ -94,8 +111,8 @@ def submission_result(
         "max_score": round(max_score, 6),
         "status": status,
         "seed": seed,
-        "grader_version": grader_version(checks),
-        "check_set_hash": check_set_hash(checks),
+        "grader_version": f"{package_version()}+{digest}",
+        "check_set_hash": digest,
         "submission": submission,
         "checks": [r.to_json() for r in results],
     }
