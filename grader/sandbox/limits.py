@@ -21,10 +21,10 @@ class Limits:
     start_seconds: float = 10.0        # wall time for the worker to start and report ready
     total_seconds: float = 120.0       # wall time of all calls of the submission together
     cpu_seconds: int = 120             # RLIMIT_CPU of one worker process (kernel-enforced)
-    memory_bytes: int = 1536 * 2**20   # RLIMIT_AS (numpy alone maps ~300 MB of address space)
+    memory_bytes: int = 1024 * 2**20   # RLIMIT_AS per process (a week-4 worker maps ~110 MB)
     file_bytes: int = 8 * 2**20        # RLIMIT_FSIZE: largest file the worker may write (in its private /tmp)
     open_files: int = 64               # RLIMIT_NOFILE
-    processes: int = 32                # RLIMIT_NPROC for the worker's uid (threads count too)
+    processes: int = 16                # RLIMIT_NPROC for the worker's uid (threads count too)
     output_bytes: int = 64 * 1024      # student stdout+stderr kept for feedback; the rest is counted, dropped
     tmp_bytes: int = 16 * 2**20        # size of the private /tmp (bubblewrap only)
 

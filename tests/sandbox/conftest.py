@@ -16,7 +16,7 @@ from grader.sandbox.session import StudentSession
 
 ATTACKS = Path(__file__).resolve().parents[1] / "data" / "attacks"
 PROBES = Path(__file__).resolve().parent / "probe_fixture"
-LIMITS = Limits(call_seconds=1.5, start_seconds=15.0, total_seconds=30.0, processes=32)
+LIMITS = Limits(call_seconds=1.5, start_seconds=15.0, total_seconds=30.0)
 R, L = 0.0325, 0.09925
 HONEST = [(2 * 0.1 + 0.5 * L) / (2 * R), (2 * 0.1 - 0.5 * L) / (2 * R)]
 AS_ROOT = os.geteuid() == 0
