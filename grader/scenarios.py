@@ -163,21 +163,15 @@ def keep(ctx: Context, check_id: str, r: Run) -> None:
         key = f"{check_id}#{n}"
     r.trace.meta["check"] = check_id
     ctx.traces[key] = r.trace.to_json()
-    if r.sandbox_error is not None and ctx.memo.get("fatal") is None and not _student_error(r.sandbox_error):
-        ctx.memo["fatal"] = r.sandbox_error
 
 
-def _student_error(exc: SandboxError) -> bool:
+def status_of(runs: list[Run]) -> str | None:
+    """ "timeout" or "error" when a run ended because the worker timed out or died, else None (the
+    check's status then follows its points)."""
+    from grader.checks import sandbox_message
     from grader.sandbox.errors import StudentError
 
-    return isinstance(exc, StudentError)
-
-
-def fatal_status(ctx: Context) -> str | None:
-    """ "timeout" or "error" when a run of this check ended with a timeout or a dead worker, else None."""
-    fatal = ctx.memo.pop("fatal", None)
-    if fatal is None:
-        return None
-    from grader.checks import sandbox_message
-
-    return sandbox_message(fatal)[0]
+    for r in runs:
+        if r.sandbox_error is not None and not isinstance(r.sandbox_error, StudentError):
+            return sandbox_message(r.sandbox_error)[0]
+    return None

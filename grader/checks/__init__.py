@@ -89,7 +89,7 @@ def checks_for_week(week: int) -> list[Check]:
 def sandbox_message(exc: SandboxError) -> tuple[str, str]:
     """(status, message) for a failure of the student's worker during a check."""
     if isinstance(exc, StudentTimeout):
-        return "timeout", f"your code did not answer in time ({exc.message}); is there an endless loop?"
+        return "timeout", f"your code did not answer in time: {exc.message}"
     if isinstance(exc, StudentError):
         return "error", f"your code raised an error: {exc}"
     if isinstance(exc, WorkerDied):

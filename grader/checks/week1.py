@@ -21,7 +21,7 @@ def _run(ctx: Context) -> scenarios.Run:
 def headless(ctx: Context) -> Outcome:
     r = _run(ctx)
     if r.problem:
-        return Outcome(0.0, r.problem, r.metrics, status=scenarios.fatal_status(ctx))
+        return Outcome(0.0, r.problem, r.metrics, status=scenarios.status_of([r]))
     return Outcome(1.0, f"the week-1 world ran for {r.trace.seconds:.1f} s without a problem", r.metrics)
 
 

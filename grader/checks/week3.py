@@ -102,8 +102,9 @@ def gives_up_v(ctx: Context) -> Outcome:
     )
 
 
-def seeded_goals(seed: int, n: int, salt: str, turn: tuple[float, float] = (0.35, math.pi)
-                 ) -> list[tuple[float, float]]:
+def seeded_goals(
+    seed: int, n: int, salt: str, turn: tuple[float, float] = (0.35, math.pi)
+) -> list[tuple[float, float]]:
     """Goals inside the week-3 arena, at least 0.5 m away, needing a turn in `turn` (rad) from the start.
 
     For settle and overshoot the turn is kept near the course's pi/2: a 10 % band around a small heading
@@ -137,9 +138,10 @@ def reach_goals(hidden: bool):
             if hidden
             else [(-1.0, 1.0), (0.0, -1.0), *seeded_goals(ctx.seed, 1, "visible")]
         )
-        reached, lines, runs = 0, [], []
+        reached, lines, runs, done = 0, [], [], []
         for goal in goals:
             r = _go(ctx, check_id, goal, 30.0)
+            done.append(r)
             ok = r.reached and r.collision is None and not r.problem
             reached += ok
             if ok:
@@ -153,7 +155,7 @@ def reach_goals(hidden: bool):
                 lines.append(f"({goal[0]:g}, {goal[1]:g}) {why}")
             runs.append({**r.metrics, "problem": r.problem})
         return Outcome(
-            reached / len(goals), "; ".join(lines), {"runs": runs}, status=scenarios.fatal_status(ctx)
+            reached / len(goals), "; ".join(lines), {"runs": runs}, status=scenarios.status_of(done)
         )
 
     reach.__name__ = "reach_" + ("other_goals" if hidden else "goals")
@@ -175,7 +177,7 @@ def _tracking(ctx: Context, check_id: str, goal: tuple[float, float]) -> tuple[s
 def settle_time(ctx: Context) -> Outcome:
     r, m = _tracking(ctx, "week3.pid.settle_time", (0.0, -1.0))
     if r.problem:
-        return Outcome(0.0, r.problem, m, status=scenarios.fatal_status(ctx))
+        return Outcome(0.0, r.problem, m, status=scenarios.status_of([r]))
     if m["settle_time"] is None:
         return Outcome(0.0, "theta never stayed within 10 % of theta_g (goal (0, -1)); tune Kp, Ki, Kd", m)
     ok = m["settle_time"] <= SETTLE_LIMIT
@@ -190,7 +192,7 @@ def settle_time(ctx: Context) -> Outcome:
 def overshoot(ctx: Context) -> Outcome:
     r, m = _tracking(ctx, "week3.pid.settle_time", (0.0, -1.0))
     if r.problem:
-        return Outcome(0.0, r.problem, m, status=scenarios.fatal_status(ctx))
+        return Outcome(0.0, r.problem, m, status=scenarios.status_of([r]))
     ok = m["overshoot"] <= OVERSHOOT_LIMIT
     return Outcome(
         float(ok), f"overshoot {m['overshoot']:.1%} of theta_g (at most 10 %) on the way to (0, -1)", m
@@ -201,7 +203,7 @@ def tracking_other_goal(ctx: Context) -> Outcome:
     goal = seeded_goals(ctx.seed, 1, "tracking", (1.0, 2.2))[0]
     r, m = _tracking(ctx, "week3.pid.tracking_other_goal", goal)
     if r.problem:
-        return Outcome(0.0, r.problem, m, status=scenarios.fatal_status(ctx))
+        return Outcome(0.0, r.problem, m, status=scenarios.status_of([r]))
     settle, over = m["settle_time"], m["overshoot"]
     ok = settle is not None and settle <= SETTLE_LIMIT and over <= OVERSHOOT_LIMIT
     text = "never settled" if settle is None else f"settled after {settle:.2f} s"
