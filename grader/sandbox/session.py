@@ -106,7 +106,10 @@ class StudentSession:
             self.isolation, self._work.path,
             dict(self._config, rlimits=self.limits.for_worker(self.limits.total_seconds - self.seconds_used)),
             tmp_bytes=self.limits.tmp_bytes, extra_paths=self._extra_paths, probes_file=self._probes_file)
-        self._worker = WorkerProcess(plan, self.limits.output_bytes)
+        try:
+            self._worker = WorkerProcess(plan, self.limits.output_bytes)
+        except OSError as exc:  # not the student's doing: the sandbox binary or interpreter cannot run
+            raise SandboxUnavailable(f"the worker could not be started: {exc}") from None
         self.starts += 1
         try:
             self._worker.wait_ready(self.limits.start_seconds)

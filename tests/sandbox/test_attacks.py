@@ -284,7 +284,8 @@ def test_large_files_hit_the_file_size_limit(open_session):
 def test_the_worker_sees_no_secrets_and_no_repository(open_session, mode, monkeypatch):
     monkeypatch.setenv("SIMIAM_GRADER_SECRET", "s3cret")
     session = open_session("snoop")
-    paths = [str(REPO / "solutions"), str(REPO / "simiam"), "/work/shared", str(REPO / "tests" / "data")]
+    paths = [str(REPO / "solutions"), str(REPO / "simiam"), "/work/shared", str(REPO / "tests" / "data"),
+             str(REPO / "grader" / "hidden"), str(REPO / "grader" / "checks"), str(REPO / "reports")]
     seen = attack(session, paths=paths)
     assert "SIMIAM_GRADER_SECRET" not in seen["environ"] and "s3cret" not in seen["cmdline"]
     assert set(seen["environ"]) <= {"PATH", "HOME", "LANG", "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS",
@@ -292,7 +293,8 @@ def test_the_worker_sees_no_secrets_and_no_repository(open_session, mode, monkey
     if AS_ROOT:
         assert seen["uid"] != 0
     if mode == BWRAP:
-        assert seen["exists"] == {paths[0]: False, paths[1]: True, paths[2]: False, paths[3]: False}
+        assert [seen["exists"][p] for p in paths] == [False, True, False, False, False, False, False]
+        assert all(Path(p).exists() for p in paths[:2] + paths[3:6])  # they are there, outside
         assert seen["hostname"] == "sandbox" and max(seen["pids"]) < 10
         assert seen["cwd"] == "/submission"
     assert sys.executable  # the grader itself is untouched
