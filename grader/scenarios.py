@@ -100,6 +100,7 @@ def run(
         "seconds": trace.seconds,
         "collided": trace.collision is not None,
         "path_length": path_length(trace),
+        "min_clearance": min_clearance(trace, world, ctx.spec),
     }
     if goal is not None:
         result.metrics.update(
@@ -123,6 +124,26 @@ def path_length(trace: Trace) -> float:
     """Distance the robot really drove (true positions)."""
     xs, ys = trace.steps["x"], trace.steps["y"]
     return sum(math.hypot(xs[i + 1] - xs[i], ys[i + 1] - ys[i]) for i in range(len(xs) - 1))
+
+
+def min_clearance(trace: Trace, world: World, spec, every: int = 3) -> float | None:
+    """The smallest gap (m) between the robot's base plate and any obstacle, at every `every`-th step
+    (and the last); 0 once they touch. None for a world without obstacles."""
+    from shapely.geometry import MultiPolygon, Polygon
+
+    if not world.obstacles:
+        return None
+    obstacles = MultiPolygon([Polygon(p) for p in world.obstacles])
+    plate = spec.base_plate
+    s = trace.steps
+    rows = list(range(0, len(s["x"]), every)) + [len(s["x"]) - 1]
+    gap = math.inf
+    for k in rows:
+        x, y, th = s["x"][k], s["y"][k], s["theta"][k]
+        c, si = math.cos(th), math.sin(th)
+        body = Polygon([(x + c * px - si * py, y + si * px + c * py) for px, py in plate])
+        gap = min(gap, body.distance(obstacles))
+    return gap
 
 
 def max_displacement(trace: Trace) -> float:

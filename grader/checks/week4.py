@@ -240,7 +240,9 @@ def _avoid(
             f"drove only {length:.2f} m in {seconds:g} s (at least {MIN_PATH:g} m expected)",
             details,
         )
-    return True, f"no collision in {seconds:g} s, {length:.1f} m driven", details, r
+    gap = r.metrics.get("min_clearance")
+    closest = f", never closer than {gap:.2f} m to an obstacle" if gap is not None else ""
+    return True, f"no collision in {seconds:g} s, {length:.1f} m driven{closest}", details, r
 
 
 def week4_world(ctx: Context) -> Outcome:
