@@ -29,13 +29,14 @@ only_bwrap = pytest.mark.skipif(not SANDBOXED, reason="holds only inside bubblew
 
 
 def graded_attack(base: Path, name: str, **fill: object) -> Path:
-    """solutions/week2 with the attack's differential_drive.py; __KEY__ placeholders filled in."""
+    """solutions/week2 with the attack's files laid over it; __KEY__ placeholders filled in."""
     folder = base / name
     shutil.copytree(REPO / "solutions" / "week2", folder)
-    text = (GRADED / name / "differential_drive.py").read_text()
-    for key, value in fill.items():
-        text = text.replace(f"__{key.upper()}__", str(value))
-    (folder / "differential_drive.py").write_text(text)
+    for file in (GRADED / name).glob("*.py"):
+        text = file.read_text()
+        for key, value in fill.items():
+            text = text.replace(f"__{key.upper()}__", str(value))
+        (folder / file.name).write_text(text)
     return folder
 
 
@@ -151,3 +152,16 @@ def test_a_whole_week_with_an_exit_mid_run(tmp_path):
     for check in attacked["checks"]:
         if "uni_to_diff" in check["id"] or "go_to_angle" in check["id"]:
             assert check["points"] == 0, check
+
+
+def test_code_outside_the_blocks_is_reported_and_never_run(tmp_path, honest_points):
+    result, check = grade(graded_attack(tmp_path, "exit_at_import"))
+    assert check["points"] == honest_points  # the os._exit at import time was not spliced in
+    assert any("differential_drive.py" in n and "outside the code blocks" in n for n in result["notices"])
+
+
+def test_a_forged_estimate_does_not_move_the_robot(tmp_path):
+    scenario = "week2.go_to_angle.reaches_theta_d"
+    honest, honest_check = grade(REPO / "solutions" / "week2", only=scenario)
+    result, check = grade(graded_attack(tmp_path, "pose"), only=scenario)
+    assert honest_check["points"] > 0 and check["points"] == 0
