@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-from functools import lru_cache
 from importlib import metadata
 from pathlib import Path
 
@@ -32,9 +31,12 @@ def _package_version() -> str:
         return "0+unknown"
 
 
-@lru_cache(maxsize=1)
 def grader_fingerprint() -> str:
-    """``<version>+<12 hex>``: the package version and a hash of every file that can change a grade."""
+    """``<version>+<12 hex>``: the package version and a hash of every file that can change a grade.
+
+    Computed afresh on each call (about 20 ms), never cached: a long-lived process (a notebook running
+    several batches) must see a check fixed in between.
+    """
     import grader
     import simiam
 

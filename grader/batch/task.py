@@ -29,9 +29,9 @@ class GraderMismatch(RuntimeError):
 def grade_task(task: dict) -> dict:
     """Grade one submission with :func:`grader.grading.grade_submission` (the seam every front door uses)."""
     expected = task.get("grader")
-    if task.get("check_grader") and expected != grader_fingerprint():
-        raise GraderMismatch(f"this grading machine runs grader {grader_fingerprint()}, the batch expects "
-                             f"{expected}; install the same version everywhere")
+    if task.get("check_grader") and expected != (mine := grader_fingerprint()):
+        raise GraderMismatch(f"this grading machine runs grader {mine}, the batch expects {expected}; "
+                             f"install the same version everywhere")
     week = int(task["week"])
     with tempfile.TemporaryDirectory(prefix="simiam-batch-") as tmp:
         submission = unpack(task["files"], Path(tmp) / "submission")

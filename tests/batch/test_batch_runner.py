@@ -107,6 +107,12 @@ def test_cache_key_covers_every_input(wrong) -> None:
     assert cache.is_fresh({"status": "graded", "batch": {"cache_key": "k"}}, "k")
 
 
+def test_fingerprint_is_recomputed_each_time(monkeypatch) -> None:
+    before = cache.grader_fingerprint()
+    monkeypatch.setattr(cache, "_package_version", lambda: "9.9.9")
+    assert cache.grader_fingerprint().startswith("9.9.9+") and before != cache.grader_fingerprint()
+
+
 def test_results_do_not_depend_on_jobs(klass: Path) -> None:
     run_batch(options(klass, jobs=1, out=klass / "one"), grade_fn=FAKE)
     run_batch(options(klass, jobs=3, out=klass / "three"), grade_fn=FAKE)
