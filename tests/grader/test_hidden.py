@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from grader.checks.week4 import SECONDS, V, _variant
+from grader.checks.week4 import HIDDEN_SECONDS, V, _variant
 from grader.hidden import load_hidden
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
@@ -30,7 +30,7 @@ def test_reference_solution_survives_every_hidden_variant() -> None:
     for v in load_hidden(4)["variants"]:
         world = _variant(load_world("week4"), v["turn"], v["of"], v["mirror"])
         brain = LocalBrain(solution, config, {"v": V, "state": "avoid_obstacles"})
-        trace = Simulator(world, brain, config.spec, dt=config.dt).run(SECONDS)
+        trace = Simulator(world, brain, config.spec, dt=config.dt).run(HIDDEN_SECONDS)
         if trace.collision is not None:
             crashed.append((world.name, trace.collision["t"]))
     assert crashed == []
