@@ -6,7 +6,7 @@ environment, the trusted simiam package and the grader's probe/sandbox modules, 
 `subprocess` mode: a separate process in its own session with the same rlimits and the same clean
 environment, but it sees the file system as its uid does.
 
-As root, the worker drops to a dedicated uid picked per worker, so RLIMIT_NPROC binds and every process the
+As root, the worker drops to a dedicated uid picked per session, so RLIMIT_NPROC binds and every process the
 student starts (even after setsid or a double fork) can be killed by uid.
 """
 
@@ -153,8 +153,11 @@ def _mkdirs(path: str, made: set[str]) -> list[str]:
     return args
 
 
-def pick_uid() -> int:
-    """A uid no process uses now, so that killing by uid can only hit this worker's processes."""
+def pick_uid() -> int | None:
+    """A uid no process uses now, so that killing by uid can only hit this session's processes
+    (None when the grader is not root and cannot switch uid)."""
+    if os.geteuid() != 0:
+        return None
     used = set()
     for entry in os.scandir("/proc"):
         if entry.name.isdigit():
@@ -183,16 +186,17 @@ def clean_env() -> dict[str, str]:
             "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 
 
-def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int,
+def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int, uid: int | None = None,
                 extra_paths: tuple[str, ...] = (), probes_file: Path | None = None) -> WorkerPlan:
-    """Build the argv for one worker in `mode` ("bwrap" or "subprocess"). `config` is the worker's config."""
+    """Build the argv for one worker in `mode` ("bwrap" or "subprocess"). `config` is the worker's config;
+    `uid` the dedicated uid (and gid) to drop to, when the grader runs as root (see `pick_uid`)."""
     as_root = os.geteuid() == 0
     worker_py = str(Path(__file__).resolve().parent / "worker.py")
     config = dict(config, paths=python_paths() + list(extra_paths))
     python = [sys.executable, "-I", "-S", "-B"]
     env = clean_env()
     if mode == BWRAP:
-        uid = pick_uid() if as_root else None
+        uid = uid if as_root else None
         config.update(submission="/submission", uid=uid, gid=uid)
         args = [bwrap_path() or "bwrap", *_bwrap_base(as_root, tmp_bytes),
                 *_bind_args(trusted_binds(probes_file) + list(extra_paths))]
@@ -201,7 +205,7 @@ def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int,
             args += ["--setenv", key, value]
         argv = args + ["--", *python, worker_py, json.dumps(config)]
         return WorkerPlan(BWRAP, argv, env, uid, NOTES[BWRAP], "/", config)
-    uid = pick_uid() if as_root else None
+    uid = uid if as_root else None
     config.update(submission=str(submission), uid=uid, gid=uid)
     argv = [*python, worker_py, json.dumps(config)]
     return WorkerPlan(SUBPROCESS, argv, env, uid, describe(SUBPROCESS), str(submission), config)

@@ -44,6 +44,7 @@ class StudentSession:
         self._extra_paths = tuple(str(Path(p).resolve()) for p in extra_paths)
         self._probes_file = probes_file
         self._work: WorkCopy | None = None
+        self._uid: int | None = None  # the dedicated uid of this session's workers (root only)
         self._worker: WorkerProcess | None = None
         self._outputs: list[CappedText] = []
         self._load: dict | None = None
@@ -101,10 +102,11 @@ class StudentSession:
         self._budget_left()
         began = time.monotonic()
         if self._work is None:
-            self._work = WorkCopy(self.spliced_dir)
+            self._uid = isolation.pick_uid()
+            self._work = WorkCopy(self.spliced_dir, self._uid)
+        rlimits = self.limits.for_worker(self.limits.total_seconds - self.seconds_used)
         plan = isolation.plan_worker(
-            self.isolation, self._work.path,
-            dict(self._config, rlimits=self.limits.for_worker(self.limits.total_seconds - self.seconds_used)),
+            self.isolation, self._work.path, dict(self._config, rlimits=rlimits), uid=self._uid,
             tmp_bytes=self.limits.tmp_bytes, extra_paths=self._extra_paths, probes_file=self._probes_file)
         try:
             self._worker = WorkerProcess(plan, self.limits.output_bytes)

@@ -2,9 +2,9 @@
 
 The session copies the spliced folder (the grader's splice output) into a fresh directory before the first
 worker starts: only regular top-level files (no symlinks, no sub-folders, each at most MAX_FILE_BYTES), owned
-by the grader and read-only to everyone else. bubblewrap binds this copy read-only at /submission; a plain
-subprocess reads it in place, so the directory is world-traversable (0711) but not listable, and nothing in
-it is writable by the worker's uid. It is removed when the session closes.
+by the grader, read-only to the worker, and readable only by the worker's own group when the grader runs as
+root. bubblewrap binds this copy read-only at /submission; a plain subprocess reads it in place (the parent
+directory is traversable, 0711, but not listable). It is removed when the session closes.
 """
 
 from __future__ import annotations
@@ -20,9 +20,13 @@ MAX_FILES = 64
 
 
 class WorkCopy:
-    """A private, read-only copy of `source` at `self.path`; `skipped` lists what was not copied and why."""
+    """A private, read-only copy of `source` at `self.path`; `skipped` lists what was not copied and why.
 
-    def __init__(self, source: Path) -> None:
+    With `gid` (the worker's dedicated group, grader running as root) the copy is readable by that group
+    only, so a concurrent worker of another submission cannot read it even without bubblewrap.
+    """
+
+    def __init__(self, source: Path, gid: int | None = None) -> None:
         self._root = Path(tempfile.mkdtemp(prefix="simiam-work-"))
         self._root.chmod(0o711)
         self.path = self._root / "submission"
@@ -43,6 +47,10 @@ class WorkCopy:
                     shutil.copyfileobj(src, dst)
                 target.chmod(0o644)
         self.path.chmod(0o755)
+        if gid is not None:
+            for path in (self.path, *self.path.iterdir()):
+                os.chown(path, 0, gid)
+                path.chmod(0o750 if path.is_dir() else 0o640)
 
     def remove(self) -> None:
         shutil.rmtree(self._root, ignore_errors=True)

@@ -313,3 +313,14 @@ def test_cpu_time_is_capped_by_the_kernel(open_one):
     with pytest.raises(WorkerDied, match="CPU time limit"):
         attack(session)
     print(f"CPU limit 1 s: worker ended after {time.monotonic() - began:.2f} s wall")
+
+
+@pytest.mark.skipif(not AS_ROOT, reason="per-session groups need root")
+def test_a_concurrent_submission_is_not_readable(open_session):
+    other = open_session("_honest")
+    other.load()
+    target = str(other._work.path / "differential_drive.py")
+    assert Path(target).exists()
+    session = open_session("read_solutions")
+    with pytest.raises(StudentError, match="Permission denied|No such file"):
+        attack(session, paths=[target])
