@@ -122,12 +122,14 @@ def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
     case = parse_case(args.case) if args.case else None
     shown = "--solutions" if args.solutions else str(folder)
     traces: dict[str, dict] = {}
+    # a replay of one check prints its answer and leaves the full report of the last grading alone
+    out_dir = None if args.check else Path(args.out)
     result = grade_submission(
         week,
         folder,
         seed=args.seed,
         hidden=args.hidden,
-        out_dir=Path(args.out),
+        out_dir=out_dir,
         sandbox=args.sandbox,
         only=args.check,
         case=case,
@@ -135,7 +137,8 @@ def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
         traces=traces,
     )
     print_result(result)
-    print(f"  report: {Path(args.out) / f'week{week}.html'} and week{week}.json")
+    if out_dir is not None:
+        print(f"  report: {out_dir / f'week{week}.html'} and week{week}.json")
     if args.json_file:
         Path(args.json_file).write_text(json.dumps(result, indent=1), encoding="utf-8")
     return 0 if all_passed(result) else 1
