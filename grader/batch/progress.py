@@ -55,7 +55,7 @@ class Progress:
         pct = 100 * self.finished // self.total if self.total else 100
         parts = [f"[{self.finished}/{self.total}] {pct:3d}%"]
         parts.append(" ".join(f"{name} {self.counts[name]}" for name in COUNTED
-                              if self.counts[name] or name in ("graded", "invalid", "timeout")))
+                              if self.counts[name] or name != "skipped"))
         if worked and elapsed > 0:
             rate = worked / elapsed
             parts.append(f"{rate * 60:.1f}/min")

@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 from conftest import make_class
 
+from grader.batch import runner
 from grader.batch.executors import DaskExecutor, ExecutorError
 from grader.batch.runner import BatchOptions, run_batch
 
@@ -26,7 +27,8 @@ def per_student(out: Path) -> dict[str, dict]:
     return found
 
 
-def test_dask_matches_local(tmp_path: Path) -> None:
+def test_dask_matches_local(tmp_path: Path, monkeypatch) -> None:
+    monkeypatch.setattr(runner, "grader_fingerprint", lambda: "fake-grader")
     answers = {"a": "score 3", "b": "score 10", "c": "crash", "d": "hang", "e": "invalid"}
     make_class(tmp_path / "class", answers, zipped=("b",))
     base = {"week": 3, "batch_dir": tmp_path / "class", "seed": 3, "quiet": True, "budget_s": 3.0}
