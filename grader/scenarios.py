@@ -184,6 +184,12 @@ def keep(ctx: Context, check_id: str, r: Run) -> None:
         key = f"{check_id}#{n}"
     r.trace.meta["check"] = check_id
     ctx.traces[key] = r.trace.to_json()
+    r.trace_key = key
+
+
+def trace_keys(runs: list[Run]) -> list[str]:
+    """The trace keys of these runs, for a check's details["traces"] (the report shows those)."""
+    return [r.trace_key for r in runs if r.trace_key is not None]
 
 
 def status_of(runs: list[Run]) -> str | None:

@@ -137,14 +137,23 @@ def course_test(ctx: Context) -> Outcome:
     errors = [abs((t - e) / t) for t, e in zip(true, est, strict=True)]
     course = ", ".join(f"{n} {e:.3f}" for n, e in zip(("x", "y", "theta"), errors, strict=True))
     off = math.dist(est[:2], reference[:2])
-    details = {"relative_errors": errors, "true_pose": list(true), "estimate": est,
-               "expected_estimate": reference, "allowed_position_difference": slack}
+    details = {
+        "relative_errors": errors,
+        "true_pose": list(true),
+        "estimate": est,
+        "expected_estimate": reference,
+        "allowed_position_difference": slack,
+    }
     if off > slack or ref.angle_diff(est[2], reference[2]) > _TOL:
         mine = f"({fmt(est[0])}, {fmt(est[1])}, {fmt(est[2])})"
         want = f"({fmt(reference[0])}, {fmt(reference[1])}, {fmt(reference[2])})"
-        return Outcome(0.0, f"after 25 steps of go-to-angle (v = 0.1, theta_d = pi/4) your estimate was "
-                            f"{mine}, "
-                            f"expected about {want}; relative errors to the true pose: {course}", details)
+        return Outcome(
+            0.0,
+            f"after 25 steps of go-to-angle (v = 0.1, theta_d = pi/4) your estimate was "
+            f"{mine}, "
+            f"expected about {want}; relative errors to the true pose: {course}",
+            details,
+        )
     return Outcome(1.0, f"relative errors after 25 steps: {course} (the course's test)", details)
 
 

@@ -21,8 +21,12 @@ def _run(ctx: Context) -> scenarios.Run:
 def headless(ctx: Context) -> Outcome:
     r = _run(ctx)
     if r.problem:
-        return Outcome(0.0, r.problem, r.metrics, status=scenarios.status_of([r]))
-    return Outcome(1.0, f"the week-1 world ran for {r.trace.seconds:.1f} s without a problem", r.metrics)
+        return Outcome(0.0, r.problem, _details(r), status=scenarios.status_of([r]))
+    return Outcome(1.0, f"the week-1 world ran for {r.trace.seconds:.1f} s without a problem", _details(r))
+
+
+def _details(r: scenarios.Run) -> dict:
+    return {**r.metrics, "traces": scenarios.trace_keys([r])}
 
 
 def stays_still(ctx: Context) -> Outcome:
@@ -39,7 +43,11 @@ def stays_still(ctx: Context) -> Outcome:
             "should stay still",
             {"moved": moved},
         )
-    return Outcome(1.0, f"the robot stayed at its start pose for {r.trace.seconds:.1f} s", {"moved": moved})
+    return Outcome(
+        1.0,
+        f"the robot stayed at its start pose for {r.trace.seconds:.1f} s",
+        {"moved": moved, **_details(r)},
+    )
 
 
 CHECKS = [

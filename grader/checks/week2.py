@@ -198,7 +198,12 @@ def go_to_angle_check(hidden: bool):
             details["runs"].append(
                 {"theta_d": theta_d, "heading_error": err, **r.metrics, "problem": r.problem}
             )
-        return Outcome(good / len(angles), "; ".join(lines), details, status=scenarios.status_of(runs))
+        return Outcome(
+            good / len(angles),
+            "; ".join(lines),
+            {**details, "traces": scenarios.trace_keys(runs)},
+            status=scenarios.status_of(runs),
+        )
 
     return go_to_angle
 

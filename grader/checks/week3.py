@@ -155,7 +155,10 @@ def reach_goals(hidden: bool):
                 lines.append(f"({goal[0]:g}, {goal[1]:g}) {why}")
             runs.append({**r.metrics, "problem": r.problem})
         return Outcome(
-            reached / len(goals), "; ".join(lines), {"runs": runs}, status=scenarios.status_of(done)
+            reached / len(goals),
+            "; ".join(lines),
+            {"runs": runs, "traces": scenarios.trace_keys(done)},
+            status=scenarios.status_of(done),
         )
 
     reach.__name__ = "reach_" + ("other_goals" if hidden else "goals")
@@ -171,6 +174,7 @@ def _tracking(ctx: Context, check_id: str, goal: tuple[float, float]) -> tuple[s
         "overshoot": overshoot,
         **r.metrics,
         "measured_from": "true pose and true goal heading",
+        "traces": scenarios.trace_keys([r]),
     }
 
 

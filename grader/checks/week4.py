@@ -229,7 +229,12 @@ def _avoid(
     r = scenarios.run(ctx, label, settings, seconds, world=world)
     scenarios.keep(ctx, check_id, r)
     length = r.metrics["path_length"]
-    details = {**r.metrics, "max_displacement": scenarios.max_displacement(r.trace), "problem": r.problem}
+    details = {
+        **r.metrics,
+        "max_displacement": scenarios.max_displacement(r.trace),
+        "problem": r.problem,
+        "traces": scenarios.trace_keys([r]),
+    }
     if r.problem:
         return False, r.problem, details, r
     if r.collision is not None:
@@ -269,7 +274,12 @@ def other_starts(ctx: Context) -> Outcome:
         lines.append(f"{world.name}: {text}")
         runs.append({"variant": v, **details})
         done.append(r)
-    return Outcome(good / 3, "; ".join(lines), {"runs": runs}, status=scenarios.status_of(done))
+    return Outcome(
+        good / 3,
+        "; ".join(lines),
+        {"runs": runs, "traces": scenarios.trace_keys(done)},
+        status=scenarios.status_of(done),
+    )
 
 
 CHECKS = [
