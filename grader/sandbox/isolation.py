@@ -180,6 +180,13 @@ def _readable_by_others(path: str) -> bool:
     return bool(os.stat(p).st_mode & 0o004)
 
 
+@functools.lru_cache(maxsize=1)
+def _private_env() -> bool:
+    """True if a uid without privileges cannot read the interpreter or its packages."""
+    paths = [sys.executable, *python_paths()]
+    return not all(_readable_by_others(p) for p in paths if os.path.exists(p))
+
+
 def clean_env() -> dict[str, str]:
     """The worker's whole environment: nothing inherited from the grader (no tokens, no paths)."""
     return {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1",
@@ -206,7 +213,8 @@ def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int, ui
         argv = args + ["--", *python, worker_py, json.dumps(config)]
         return WorkerPlan(BWRAP, argv, env, uid, NOTES[BWRAP], "/", config)
     uid = uid if as_root else None
-    config.update(submission=str(submission), uid=uid, gid=uid)
+    preload = uid is not None and _private_env()
+    config.update(submission=str(submission), uid=uid, gid=uid, preload_stdlib=preload)
     argv = [*python, worker_py, json.dumps(config)]
     return WorkerPlan(SUBPROCESS, argv, env, uid, describe(SUBPROCESS), str(submission), config)
 
@@ -218,7 +226,6 @@ def describe(mode: str) -> str:
     if os.geteuid() != 0:
         return NOTES[SUBPROCESS].format(uid=" under your own user (the process limit counts all your "
                                              "processes, and processes that leave the session may survive)")
-    private = not all(_readable_by_others(p) for p in python_paths() if os.path.exists(p))
     env_note = " (the Python environment is private to root here, so only modules preloaded before the " \
-               "drop can be imported)" if private else ""
+               "drop can be imported)" if _private_env() else ""
     return NOTES[SUBPROCESS].format(uid=f" under its own unprivileged uid{env_note}")

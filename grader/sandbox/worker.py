@@ -31,15 +31,16 @@ def _drop_privileges(uid: int, gid: int) -> None:
                 raise SystemExit("sandbox: capabilities left after dropping privileges")
 
 
-# Imported before the privilege drop, so they load even where the dedicated uid cannot read the Python
-# environment (subprocess mode with the interpreter under a private home directory).
-_PRELOAD = ("math", "cmath", "random", "statistics", "functools", "itertools", "collections", "copy",
-            "time", "json", "dataclasses", "typing", "enum", "abc", "numbers", "operator", "re", "warnings",
-            "traceback", "inspect", "signal", "socket", "select", "subprocess", "threading", "struct",
-            "io", "string", "textwrap", "heapq", "bisect", "decimal", "fractions", "datetime", "array",
-            "queue", "contextlib", "encodings.idna", "numpy", "simiam.control", "simiam.course.weeks",
-            "simiam.course.loader",
+# The trusted modules every worker needs, imported before the privilege drop and before student code.
+_PRELOAD = ("math", "numpy", "simiam.control", "simiam.course.weeks", "simiam.course.loader",
             "grader.sandbox.limits", "grader.sandbox.worker_loop")
+# Standard-library modules a student may import, preloaded only when the dedicated uid cannot read the
+# Python environment (subprocess mode, interpreter under a private home directory).
+_STDLIB = ("cmath", "random", "statistics", "functools", "itertools", "collections", "copy", "time", "json",
+           "dataclasses", "typing", "enum", "abc", "numbers", "operator", "re", "warnings", "traceback",
+           "inspect", "signal", "socket", "select", "subprocess", "threading", "struct", "io", "string",
+           "textwrap", "heapq", "bisect", "decimal", "fractions", "datetime", "array", "queue", "contextlib",
+           "encodings.idna")
 
 
 def _bootstrap(config: dict) -> None:
@@ -47,7 +48,9 @@ def _bootstrap(config: dict) -> None:
     sys.path[:] = [p for p in sys.path if p] + list(config["paths"])
     import importlib
 
-    for name in (*_PRELOAD, config.get("probes", "grader.probes"), config.get("loader", "").split(":")[0]):
+    stdlib = _STDLIB if config.get("preload_stdlib") else ()
+    loader = config.get("loader", "").split(":")[0]
+    for name in (*_PRELOAD, *stdlib, config.get("probes", "grader.probes"), loader):
         try:
             importlib.import_module(name)
         except ImportError:
