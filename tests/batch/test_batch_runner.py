@@ -207,3 +207,12 @@ def test_killed_batch_keeps_what_was_graded_and_resumes(tmp_path: Path, how: int
     report = run_batch(options(tmp_path, seed=5), grade_fn=COUNT)
     assert sorted(calls.read_text().split()) == ["d", "e"]
     assert report["counts"]["graded"] == 5 and not report["interrupted"]
+
+
+def test_a_second_batch_on_the_same_output_is_refused(tmp_path: Path) -> None:
+    from grader.batch.store import exclusive
+
+    make_class(tmp_path / "class", {"a": "score 1"})
+    with exclusive(tmp_path / "out"), pytest.raises(BatchError, match="another batch"):
+        run_batch(options(tmp_path), grade_fn=FAKE)
+    assert run_batch(options(tmp_path), grade_fn=FAKE)["counts"]["graded"] == 1
