@@ -203,3 +203,33 @@ def write_replay(trace: dict, path: str | Path) -> Path:
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(render_replay(trace), encoding="utf-8")
     return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    """`python -m simiam.viewer.replay TRACE.json [OUT.html]`: a replay page for a saved trace."""
+    import argparse
+    import sys
+
+    p = argparse.ArgumentParser(prog="python -m simiam.viewer.replay", description=main.__doc__)
+    p.add_argument("trace", help="a trace JSON written by `simiam run` (runs/weekN.json) or the grader")
+    p.add_argument("out", nargs="?", default=None, help="the page to write (default: the trace's name, .html)")
+    args = p.parse_args(argv)
+    src = Path(args.trace)
+    try:
+        trace = json.loads(src.read_text(encoding="utf-8"))
+        out = write_replay(trace, Path(args.out) if args.out else src.with_suffix(".html"))
+    except OSError as exc:
+        print(f"{src}: cannot read or write: {exc.strerror or exc}", file=sys.stderr)
+        return 2
+    except json.JSONDecodeError as exc:
+        print(f"{src}, line {exc.lineno}: not valid JSON ({exc.msg})", file=sys.stderr)
+        return 2
+    except TraceFormatError as exc:
+        print(f"{src}: not a simiam trace: {exc}", file=sys.stderr)
+        return 2
+    print(out)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
