@@ -212,7 +212,7 @@ def main(argv: list[str] | None = None) -> int:
 
     p = argparse.ArgumentParser(prog="python -m simiam.viewer.replay", description=main.__doc__)
     p.add_argument("trace", help="a trace JSON written by `simiam run` (runs/weekN.json) or the grader")
-    p.add_argument("out", nargs="?", default=None, help="the page to write (default: the trace's name, .html)")
+    p.add_argument("out", nargs="?", default=None, help="the page to write (default: TRACE with .html)")
     args = p.parse_args(argv)
     src = Path(args.trace)
     try:

@@ -111,3 +111,19 @@ def test_minimal_trace_renders(synthetic):
     packed = pack_trace(trace)
     assert packed["goal"] is None and packed["steps"]["x_est"] == [None, None]
     assert "simiam replay" in render_replay(trace)
+
+
+def test_command_line_writes_a_page_or_says_what_is_wrong(synthetic, tmp_path, capsys):
+    from simiam.viewer.replay import main
+
+    good = tmp_path / "run.json"
+    good.write_text(json.dumps(synthetic.load("week3_goal.json")))
+    assert main([str(good)]) == 0 and (tmp_path / "run.html").stat().st_size > 10_000
+    broken = tmp_path / "broken.json"
+    broken.write_text('{"steps":\n  [1, 2,]}')
+    assert main([str(broken)]) == 2
+    assert f"{broken}, line 2: not valid JSON" in capsys.readouterr().err
+    other = tmp_path / "other.json"
+    other.write_text('{"format": "something/9"}')
+    assert main([str(other)]) == 2
+    assert "not a simiam trace: trace format is 'something/9'" in capsys.readouterr().err
