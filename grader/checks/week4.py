@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from grader import reference as ref
 from grader import scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
-from grader.checks.answers import fmt, matrix
+from grader.checks.answers import fmt, matrix, vector
 from grader.properties import run_property
 from simiam.world import World, load_world
 
@@ -136,7 +136,10 @@ def _u_ao(ctx: Context, distances: list) -> tuple[np.ndarray, np.ndarray]:
     where = f"with IR distances {', '.join(fmt(d) for d in distances)}"
     if answer.get("u_ao") is None:
         raise Mismatch(f"{where} AvoidObstacles kept no u_ao")
-    u_ao = np.array(matrix([answer.get("u_ao")], 1, 2, f"{where} your u_ao")[0])
+    u_ao = answer.get("u_ao")
+    if isinstance(u_ao, list) and all(isinstance(c, list) and len(c) == 1 for c in u_ao):
+        u_ao = [c[0] for c in u_ao]  # a 2x1 column vector is fine too
+    u_ao = np.array(vector(u_ao, 2, f"{where} your u_ao"))
     wf = answer.get("ir_distances_wf")
     points = np.array(
         matrix(
