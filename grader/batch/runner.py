@@ -113,6 +113,10 @@ def main(args: argparse.Namespace) -> int:
     except BatchError as exc:
         print(f"grade: {exc}", file=sys.stderr)
         return 2
+    except OSError as exc:          # disk full, read-only --out...: what was written so far stays valid
+        print(f"grade: the batch stopped: {exc}; fix this and rerun the same command to resume",
+              file=sys.stderr)
+        return 2
     if report["interrupted"]:
         return 130
     return 0 if report["counts"]["graded"] == report["students"] else 1
@@ -139,6 +143,8 @@ def run_batch(options: BatchOptions, grade_fn: Callable[[dict], dict] | str | No
     if options.week not in (1, 2, 3, 4):
         raise BatchError(f"there is no week {options.week}; weeks are 1 to 4")
     out = options.out.resolve()
+    if out == options.batch_dir.resolve():
+        raise BatchError("--out must not be the class folder itself; choose another folder")
     students = [s for s in discover(options.batch_dir) if not _holds(s.path, out)]
     if not students:
         raise BatchError(f"{options.batch_dir} has no student folders or .zip files")

@@ -143,6 +143,8 @@ def test_bad_batch_folder_and_busy_output(tmp_path: Path) -> None:
     (tmp_path / "class").mkdir()
     with pytest.raises(BatchError, match="no student"):
         run_batch(options(tmp_path), grade_fn=FAKE)
+    with pytest.raises(BatchError, match="not be the class folder"):
+        run_batch(options(tmp_path, out=tmp_path / "class"), grade_fn=FAKE)
 
 
 def test_reserved_ids_and_output_inside_the_class_folder(tmp_path: Path) -> None:
