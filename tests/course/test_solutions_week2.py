@@ -87,3 +87,29 @@ def test_ir_distances_read_the_table_back():
 
 def test_week3_divider_in_week2_is_caught(tmp_path):
     assert max(ir_relative_errors(_folder(tmp_path, "week2_ir_week3_divider"))) > 0.03
+
+
+def part2_answer(folder: Path, v: float, theta_d: float) -> str:
+    """The course's part-2 answer: relative odometry errors in x, y, theta after 25 steps of 0.05 s."""
+    sub = load_submission(folder, WEEK)
+    assert sub.ok, sub.errors
+    brain = LocalBrain(sub, WEEK, {"v": v, "theta_d": theta_d})
+    sim = Simulator(load_world(WEEK.world), brain, WEEK.spec, dt=0.05)
+    for _ in range(25):
+        rec = sim.step()
+    truth, est = rec.pose, rec.command["estimate"]
+    return ", ".join(f"{abs((t - e) / t):.3f}" for t, e in zip(truth, est, strict=True))
+
+
+@pytest.mark.parametrize(
+    ("v", "theta_d", "answer"),
+    # values from the reference's model of the original week 2 (original-simulator.md, section 11)
+    [(0.1, math.pi / 4, "0.013, 0.011, 0.129"), (0.15, 0.5, "0.027, 0.006, 0.047")],
+)
+def test_part2_odometry_answer_matches_the_reference_model(v, theta_d, answer):
+    assert part2_answer(ROOT / "solutions/week2", v, theta_d) == answer
+
+
+def test_part2_answer_of_the_placeholder_differs(tmp_path):
+    folder = _folder(tmp_path, "week2_odometry_placeholder")
+    assert part2_answer(folder, 0.1, math.pi / 4) != "0.013, 0.011, 0.129"
