@@ -229,8 +229,8 @@ def _summary(result: dict, checks: list[dict]) -> dict:
             "submission": str(result.get("submission", "") or ""), "isolation": str(isolation or ""),
             "hidden": bool(hidden), "visibility_note": note, "counts": counts,
             "isolation_note": str(result.get("isolation_note", "") or ""),
-            "problems": [(str(f), [str(t) for t in (v if isinstance(v, list) else [v])])
-                         for f, v in problems.items()],
+            "problems": [str(t) if str(t).startswith(str(f)) else f"{f}: {t}"
+                         for f, v in problems.items() for t in (v if isinstance(v, list) else [v])],
             "notices": [str(n) for n in notices],
             "stdout": str(result.get("student_output") or result.get("stdout") or ""),
             "stderr": str(result.get("stderr", "") or "")}

@@ -167,3 +167,18 @@ def test_unlabelled_runs_take_their_trace_labels(week3_result):
     html = render_report(result, traces, replays="none")
     table = html.split('<table class="metrics">', 1)[1].split("</table>", 1)[0]
     assert "<th>run</th>" in table and "<td>goal (1, 1)</td>" in table and "<td>goal (2, -0.3)</td>" in table
+
+
+def test_file_problems_notices_and_printed_output(week3_result):
+    result, traces = week3_result
+    result.update({"problems": {"go_to_goal.py": ["go_to_goal.py:12: <b>invalid syntax</b>"],
+                                "quickbot.py": ["get_ir_distances is missing"]},
+                   "notices": ["qb_supervisor.py:3: changed outside the code blocks (not used)"],
+                   "student_output": "hello from the student <script>window.pwned = 3</script>",
+                   "hidden_checks_not_run": 2, "isolation_note": "bubblewrap sandbox"})
+    html = render_report(result, traces, replays="none")
+    assert "<li>go_to_goal.py:12: &lt;b&gt;invalid syntax&lt;/b&gt;</li>" in html
+    assert "<li>quickbot.py: get_ir_distances is missing</li>" in html
+    assert "changed outside the code blocks" in html and "bubblewrap sandbox" in html
+    assert "4 visible checks ran here; 2 hidden checks" in html
+    assert "hello from the student &lt;script&gt;" in html and "<script>window.pwned = 3" not in html
