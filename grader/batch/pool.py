@@ -23,6 +23,7 @@ import os
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 import traceback
 from collections.abc import Callable, Iterable
@@ -166,6 +167,7 @@ class _Slot:
         self.proc: subprocess.Popen | None = None
         self.send_conn: Connection | None = None
         self.conn: Connection | None = None       # replies; EOF here also means the child died
+        self.log: Any = None
         self.task: dict | None = None
         self.started = 0.0
         self.deadline = 0.0
@@ -178,9 +180,12 @@ class _Slot:
         task_r, task_w = os.pipe()
         reply_r, reply_w = os.pipe()
         env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
+        # its prints and warnings go to a private log (shown when it crashes), not over the progress line
+        self.log = tempfile.TemporaryFile()
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "grader.batch.pool", self.ref, str(task_r), str(reply_w)],
-            pass_fds=(task_r, reply_w), start_new_session=True, env=env, stdin=subprocess.DEVNULL)
+            pass_fds=(task_r, reply_w), start_new_session=True, env=env, stdin=subprocess.DEVNULL,
+            stdout=self.log, stderr=subprocess.STDOUT)
         os.close(task_r)
         os.close(reply_w)
         self.send_conn = Connection(task_w, readable=False)
@@ -216,10 +221,21 @@ class _Slot:
             except subprocess.TimeoutExpired:
                 kill_tree(self.proc.pid)
                 self.proc.wait(timeout=5)
-        for conn in (self.send_conn, self.conn):
-            if conn is not None:
-                conn.close()
-        self.proc, self.send_conn, self.conn = None, None, None
+        for resource in (self.send_conn, self.conn, self.log):
+            if resource is not None:
+                resource.close()
+        self.proc, self.send_conn, self.conn, self.log = None, None, None, None
+
+    def log_tail(self, limit: int = 4000) -> str:
+        """The end of what the grading process printed (for a crash report)."""
+        if self.log is None:
+            return ""
+        try:
+            self.log.seek(0, os.SEEK_END)
+            self.log.seek(max(0, self.log.tell() - limit))
+            return self.log.read().decode("utf-8", "replace")
+        except (OSError, ValueError):
+            return ""
 
 
 class WorkerPool:
@@ -289,9 +305,9 @@ class WorkerPool:
                 kill_tree(slot.proc.pid)
                 slot.proc.wait(timeout=5)
         if slot.proc.poll() is not None:
-            message = exit_reason(slot.proc.returncode)
+            message, output = exit_reason(slot.proc.returncode), slot.log_tail()
             slot.close()
-            return {"status": "crashed", "value": None, "message": message}
+            return {"status": "crashed", "value": None, "message": message, "traceback": output}
         if time.monotonic() >= slot.deadline:
             slot.close(kill=True)
             return {"status": "timeout", "value": None,

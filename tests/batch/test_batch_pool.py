@@ -48,6 +48,7 @@ def test_hang_is_killed_with_its_children_and_others_finish(tmp_path: Path) -> N
     assert outcomes["hang"]["status"] == "timeout" and "longer than 2 s" in outcomes["hang"]["message"]
     assert gone(int(pidfile.read_text())), "the grading process's child survived the timeout"
     assert outcomes["c"]["status"] == "crashed" and "status 3" in outcomes["c"]["message"]
+    assert "about to die" in outcomes["c"]["traceback"]      # what it printed, kept for the instructor
     for sid, score in (("a", 3.0), ("b", 9.0), ("d", 1.0)):
         assert outcomes[sid]["status"] == "ok" and outcomes[sid]["value"]["result"]["score"] == score
 
