@@ -218,3 +218,18 @@ def test_a_second_batch_on_the_same_output_is_refused(tmp_path: Path) -> None:
     with exclusive(tmp_path / "out"), pytest.raises(BatchError, match="another batch"):
         run_batch(options(tmp_path), grade_fn=FAKE)
     assert run_batch(options(tmp_path), grade_fn=FAKE)["counts"]["graded"] == 1
+
+
+def test_exit_status_of_main(tmp_path: Path, monkeypatch) -> None:
+    import argparse
+
+    real = runner.run_batch
+    monkeypatch.setattr(runner, "run_batch", lambda o, **kw: real(o, grade_fn=FAKE))
+    make_class(tmp_path / "class", {"a": "score 1", "b": "score 2"})
+    args = argparse.Namespace(week="week3", batch=str(tmp_path / "class"), out=str(tmp_path / "out"), jobs=1,
+                              force=False, quiet=True, seed=3, hidden=False, executor="local", scheduler=None)
+    assert runner.main(args) == 0
+    (tmp_path / "class" / "c").mkdir()
+    (tmp_path / "class" / "c" / "answer.txt").write_text("invalid")
+    assert runner.main(args) == 1
+    assert runner.main(argparse.Namespace(**{**vars(args), "week": "week9"})) == 2
