@@ -216,7 +216,7 @@
     // the heading line (theta, from the estimate as the original drew it), blue
     arrow(sx(from[0]), sy(from[1]), sx(from[0] + L * Math.cos(from[2])), sy(from[1] + L * Math.sin(from[2])),
           COLORS.heading, 2);
-    var tg = S.theta_g ? S.theta_g[i] : null;
+    var tg = S.theta_g && !S.ux ? S.theta_g[i] : null;   // week 4 draws u_ao itself instead
     if (tg !== null && tg !== undefined) {
       arrow(sx(from[0]), sy(from[1]), sx(from[0] + L * Math.cos(tg)), sy(from[1] + L * Math.sin(tg)),
             COLORS.thetaG, 2, [5, 3]);
@@ -251,7 +251,7 @@
   }
 
   // ---------- plots linked to the time cursor ----------
-  function wrap(a) { return a === null ? null : Math.atan2(Math.sin(a), Math.cos(a)); }
+  function wrap(a) { return a === null || a === undefined ? null : Math.atan2(Math.sin(a), Math.cos(a)); }
   function Plot(title, series, fixed) {
     var box = document.createElement("div"), h = document.createElement("h2"), c = document.createElement("canvas");
     box.className = "plot";
@@ -332,14 +332,16 @@
   function hasValues(a) { return !!a && a.some(function (v) { return v !== null; }); }
 
   var plots = [];
+  // the reference heading the controller steered to: θ_g (go to goal) or, with u_ao recorded, θ_ao
+  var REF = S.ux ? "θ_ao" : "θ_g";
   (function buildPlots() {
     var thetaEst = S.theta_est.map(wrap);
     var hs = [{ label: "θ (estimate)", ys: thetaEst, color: COLORS.series[0], breakOnWrap: true, width: 1.6 }];
     if (hasValues(col("theta_g"))) {
-      hs.push({ label: "θ_g", ys: S.theta_g, color: COLORS.series[1], dash: [5, 3], breakOnWrap: true, width: 1.6 });
+      hs.push({ label: REF, ys: S.theta_g, color: COLORS.series[1], dash: [5, 3], breakOnWrap: true, width: 1.6 });
     }
     hs.push({ label: "θ (true)", ys: S.theta.map(wrap), color: "#9aa3ae", breakOnWrap: true, width: 1 });
-    plots.push(Plot(hasValues(col("theta_g")) ? "Heading θ and θ_g (rad)" : "Heading θ (rad)", hs));
+    plots.push(Plot(hasValues(col("theta_g")) ? "Heading θ and " + REF + " (rad)" : "Heading θ (rad)", hs));
     if (D.goal) {
       var dg = S.x.map(function (x, k) { return Math.hypot(D.goal[0] - x, D.goal[1] - S.y[k]); });
       plots.push(Plot("Distance to goal (m)", [{ label: "true", ys: dg, color: COLORS.series[2] }]));
@@ -365,8 +367,8 @@
     if (i === st.lastStatusIndex) { return; }
     st.lastStatusIndex = i;
     var parts = ["<b>step</b> " + i, "<b>state</b> " + escapeHtml(stateAt(i)),
-                 "<b>true</b> (" + f3(S.x[i]) + ", " + f3(S.y[i]) + ", " + f3(S.theta[i]) + ")",
-                 "<b>estimate</b> (" + f3(S.x_est[i]) + ", " + f3(S.y_est[i]) + ", " + f3(S.theta_est[i]) + ")",
+                 "<b>true</b> (" + f3(S.x[i]) + ", " + f3(S.y[i]) + ", " + f3(wrap(S.theta[i])) + ")",
+                 "<b>estimate</b> (" + f3(S.x_est[i]) + ", " + f3(S.y_est[i]) + ", " + f3(wrap(S.theta_est[i])) + ")",
                  "<b>wheels</b> " + f3(S.vel_r[i]) + " / " + f3(S.vel_l[i]) + " rad/s"];
     if (S.ir0) { parts.push("<b>IR</b> " + [0, 1, 2, 3, 4].map(function (k) { return f3(S["ir" + k][i]); }).join(" ")); }
     if (D.collision && S.t[i] >= D.collision.t - 1e-9) { parts.push("<span class=\"crash\">collided at t = " + D.collision.t.toFixed(2) + " s</span>"); }
@@ -498,7 +500,7 @@
     "<span><i style=\"background:" + COLORS.body + "\"></i>robot (true pose)</span>" +
     "<span><i style=\"border-top:2px dashed #888;height:0\"></i>odometry estimate</span>" +
     "<span><i style=\"background:" + COLORS.heading + "\"></i>heading θ</span>" +
-    (hasValues(col("theta_g")) ? "<span><i style=\"background:" + COLORS.thetaG + "\"></i>θ_g</span>" : "") +
+    (hasValues(col("theta_g")) && !S.ux ? "<span><i style=\"background:" + COLORS.thetaG + "\"></i>θ_g</span>" : "") +
     (hasValues(col("ux")) ? "<span><i style=\"background:" + COLORS.uao + "\"></i>u_ao</span><span>× IR points</span>" : "");
 
   // ---------- the test / console API ----------
