@@ -33,9 +33,9 @@ _UID_RANGE = (200_000, 260_000)
 NOTES = {
     BWRAP: "bubblewrap sandbox: no network, private /tmp, own PID namespace, read-only view of only the "
            "spliced submission and the Python environment; rlimits on time, memory, processes, files.",
-    SUBPROCESS: "no bubblewrap: student code runs in a separate, resource-limited process{uid}; it is "
-                "killed with its whole process tree, and only JSON crosses back, but it has the network and "
-                "can read what its user can read (for example solutions/ if it is world-readable).",
+    SUBPROCESS: "no bubblewrap: student code runs in a separate, resource-limited process{uid}{net}; it is "
+                "killed with its whole process tree, and only JSON crosses back, but it can read what its "
+                "user can read (for example solutions/ if it is world-readable) and write to /tmp.",
 }
 
 
@@ -223,9 +223,12 @@ def describe(mode: str) -> str:
     """One or two sentences on what holds in `mode` on this machine, for the result and the report."""
     if mode == BWRAP:
         return NOTES[BWRAP]
+    from grader.sandbox.seccomp import program
+
+    net = " with network sockets blocked by a seccomp filter" if program() else " with network access"
     if os.geteuid() != 0:
-        return NOTES[SUBPROCESS].format(uid=" under your own user (the process limit counts all your "
-                                             "processes, and processes that leave the session may survive)")
+        return NOTES[SUBPROCESS].format(net=net, uid=" under your own user (the process limit counts all "
+                                        "your processes, and processes that leave the session may survive)")
     env_note = " (the Python environment is private to root here, so only modules preloaded before the " \
                "drop can be imported)" if _private_env() else ""
-    return NOTES[SUBPROCESS].format(uid=f" under its own unprivileged uid{env_note}")
+    return NOTES[SUBPROCESS].format(net=net, uid=f" under its own unprivileged uid{env_note}")

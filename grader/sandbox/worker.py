@@ -2,7 +2,8 @@
 
 Started as `python -I -S -B worker.py '<config JSON>'`: isolated mode, no site hooks (so no
 sitecustomize or .pth file from anywhere runs), no bytecode writes. The bootstrap, before any student code:
-drops to the dedicated uid (when started as root), applies the rlimits, sets sys.path to the interpreter's
+drops to the dedicated uid (when started as root), applies the rlimits and a seccomp filter against
+network sockets, sets sys.path to the interpreter's
 standard library plus the paths the grader names, imports the trusted modules, then answers requests on the
 private pipe pair. Student output goes to fds 1 and 2, which the grader captures separately with a cap.
 
@@ -33,7 +34,7 @@ def _drop_privileges(uid: int, gid: int) -> None:
 
 # The trusted modules every worker needs, imported before the privilege drop and before student code.
 _PRELOAD = ("math", "numpy", "simiam.control", "simiam.course.weeks", "simiam.course.loader",
-            "grader.sandbox.limits", "grader.sandbox.worker_loop")
+            "grader.sandbox.limits", "grader.sandbox.seccomp", "grader.sandbox.worker_loop")
 # Standard-library modules a student may import, preloaded only when the dedicated uid cannot read the
 # Python environment (subprocess mode, interpreter under a private home directory).
 _STDLIB = ("cmath", "random", "statistics", "functools", "itertools", "collections", "copy", "time", "json",
@@ -58,8 +59,10 @@ def _bootstrap(config: dict) -> None:
     if config.get("uid") is not None:
         _drop_privileges(int(config["uid"]), int(config["gid"]))
     from grader.sandbox.limits import apply_rlimits
+    from grader.sandbox.seccomp import install
 
     apply_rlimits(config["rlimits"])
+    config["seccomp"] = install()  # no network sockets, even where bubblewrap is missing
     os.environ.clear()
     os.environ.update({"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8",
                        "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"})

@@ -116,7 +116,8 @@ def serve(config: dict) -> None:
     """Announce readiness, then answer requests until the grader closes the pipe."""
     fd_in, fd_out = int(config["fd_in"]), int(config["fd_out"])
     worker = _Worker(config)
-    _send(fd_out, {"id": 0, "ok": True, "value": {"pid": os.getpid(), "uid": os.getuid()}})
+    _send(fd_out, {"id": 0, "ok": True, "value": {"pid": os.getpid(), "uid": os.getuid(),
+                                                  "seccomp": bool(config.get("seccomp"))}})
     reader = LineReader()
     while True:
         line = reader.pop_line()

@@ -26,4 +26,5 @@ def attack(paths=(), **args):
         'exists': {p: os.path.exists(p) for p in paths},
         'pids': sorted(int(p) for p in os.listdir('/proc') if p.isdigit()),
         'cwd': os.getcwd(),
+        'interfaces': sorted(line.split(':')[0].strip() for line in open('/proc/self/net/dev').readlines()[2:]),
     }

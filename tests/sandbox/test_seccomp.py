@@ -1,0 +1,52 @@
+"""The seccomp filter, installed in a throw-away interpreter (it cannot be removed once installed)."""
+
+from __future__ import annotations
+
+import struct
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import grader
+from grader.sandbox import seccomp
+
+PROBE = """
+import os, socket, sys
+sys.path[:0] = {paths!r}
+from grader.sandbox.seccomp import install
+assert install()
+results = []
+for family in (socket.AF_INET, socket.AF_INET6, socket.AF_NETLINK, socket.AF_PACKET):
+    try:
+        socket.socket(family, socket.SOCK_DGRAM if family != socket.AF_PACKET else socket.SOCK_RAW).close()
+        results.append("open")
+    except PermissionError:
+        results.append("denied")
+a, b = socket.socketpair(socket.AF_UNIX)
+a.sendall(b"x"); results.append(b.recv(1).decode())
+results.append(str(os.getpid() > 0))
+print(",".join(results))
+"""
+
+
+@pytest.mark.skipif(seccomp.program() is None, reason="no filter for this machine")
+def test_only_unix_sockets_are_allowed():
+    paths = [str(Path(grader.__file__).parents[1])]
+    done = subprocess.run([sys.executable, "-I", "-c", PROBE.format(paths=paths)], capture_output=True,
+                          text=True, timeout=30)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "denied,denied,denied,denied,x,True"
+
+
+def test_jumps_stay_inside_the_program():
+    for machine in ("x86_64", "aarch64"):
+        prog = seccomp.program(machine)
+        count = len(prog) // 8
+        for i in range(count):
+            code, jt, jf, _k = struct.unpack_from("HBBI", prog, 8 * i)
+            if code in (0x15, 0x35):
+                assert i + 1 + jt < count and i + 1 + jf < count
+        assert struct.unpack_from("HBBI", prog, 8 * (count - 1))[0] == 0x06  # ends in a return
+    assert seccomp.program("sparc") is None
