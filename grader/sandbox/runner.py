@@ -19,7 +19,7 @@ import time
 from dataclasses import dataclass
 
 from grader.sandbox.errors import StudentTimeout, WorkerDied
-from grader.sandbox.isolation import WorkerPlan
+from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
 from grader.sandbox.output import CappedOutput
 from grader.sandbox.protocol import LineReader, ProtocolError, decode, encode
 
@@ -149,6 +149,8 @@ class WorkerProcess:
                 pass
         if self.plan.uid is not None:
             kill_uid(self.plan.uid)
+            if self.plan.mode == SUBPROCESS:
+                remove_files_of(self.plan.uid)
         try:
             self.proc.wait(timeout=5.0)
         except subprocess.TimeoutExpired:
@@ -183,6 +185,31 @@ def kill_uid(uid: int, rounds: int = 20) -> None:
         subprocess.run(helper, user=uid, group=uid, extra_groups=[], stdin=subprocess.DEVNULL,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False, close_fds=True)
         time.sleep(0.002)
+
+
+_SHARED_DIRS = ("/tmp", "/var/tmp", "/dev/shm")
+
+
+def remove_files_of(uid: int) -> list[str]:
+    """Delete what `uid` left in the machine's shared writable folders (plain subprocess mode)."""
+    removed = []
+    for root in _SHARED_DIRS:
+        try:
+            entries = list(os.scandir(root))
+        except OSError:
+            continue
+        for entry in entries:
+            try:
+                if entry.stat(follow_symlinks=False).st_uid != uid:
+                    continue
+                if entry.is_dir(follow_symlinks=False):
+                    shutil.rmtree(entry.path, ignore_errors=True)
+                else:
+                    os.unlink(entry.path)
+                removed.append(entry.path)
+            except OSError:
+                pass
+    return removed
 
 
 def _uid_alive(uid: int) -> bool:
