@@ -35,7 +35,8 @@ NOTES = {
            "spliced submission and the Python environment; rlimits on time, memory, processes, files.",
     SUBPROCESS: "no bubblewrap: student code runs in a separate, resource-limited process{uid}{net}; it is "
                 "killed with its whole process tree, and only JSON crosses back, but it can read what its "
-                "user can read (for example solutions/ if it is world-readable) and write to /tmp.",
+                "user can read (for example solutions/ if it is world-readable) and write to /tmp while it "
+                "runs.",
 }
 
 

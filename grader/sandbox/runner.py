@@ -105,9 +105,8 @@ class WorkerProcess:
             left = deadline - time.monotonic()
             if left <= 0:
                 self.kill()
-                what = "start" if op == "start" else f"answer ({op})"
-                raise StudentTimeout(f"no {what} within the time limit: an infinite loop or a long "
-                                     "sleep in your code?")
+                what = "the worker did not start" if op == "start" else "no answer"
+                raise StudentTimeout(f"{what} within the time limit")
             ready, _w, _x = select.select([self._resp_r], [], [], left)
             if not ready:
                 continue
@@ -133,7 +132,7 @@ class WorkerProcess:
             return _SIGNAL_MEANING.get(-code, f"it was ended by signal {-code}")
         if code > 128 and code - 128 in _SIGNAL_MEANING:  # bubblewrap reports the child's signal this way
             return _SIGNAL_MEANING[code - 128]
-        return f"your code ended the worker process (exit status {code}, e.g. sys.exit or os._exit)"
+        return f"the worker process ended with exit status {code} (os._exit or a crash in your code)"
 
     # ---- ending ------------------------------------------------------------------------------------
     def kill(self) -> None:

@@ -137,11 +137,11 @@ class StudentSession:
         self.calls += 1
         try:
             response = self._worker.request(op, to_json(fields), limit)
-        except StudentTimeout as exc:
+        except StudentTimeout:
             if limit < (timeout or self.limits.call_seconds):
                 raise StudentTimeout("the submission used up its total time of "
                                      f"{self.limits.total_seconds:g} s") from None
-            raise StudentTimeout(f"{exc.message} (limit {limit:g} s)") from None
+            raise StudentTimeout(f"no answer within {limit:g} s, the time limit per call") from None
         finally:
             self.seconds_used += time.monotonic() - began
         if response["ok"]:
