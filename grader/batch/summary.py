@@ -64,7 +64,7 @@ rerun the same command to finish.</p>{% endif %}
 <th>errors</th></tr>
 {% for c in checks %}<tr><td><code>{{ c.id }}</code></td><td>{{ c.name }}</td><td>{{ c.kind }}</td>
 <td class="n">{{ "%g"|format(c.max_points) }}</td>
-<td><span class="bar" style="width:{{ (c.pass_rate * 80)|round|int }}px"></span>
+<td style="white-space:nowrap"><span class="bar" style="width:{{ (c.pass_rate * 80)|round|int }}px"></span>
 {{ (c.pass_rate * 100)|round|int }}%</td>
 <td class="n">{{ "%.2f"|format(c.mean_points) }}</td><td class="n">{{ c.errors }}</td></tr>
 {% endfor %}</table>
