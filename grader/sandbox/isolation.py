@@ -215,7 +215,7 @@ def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int, ui
         return WorkerPlan(BWRAP, argv, env, uid, NOTES[BWRAP], "/", config)
     uid = uid if as_root else None
     preload = uid is not None and _private_env()
-    config.update(submission=str(submission), uid=uid, gid=uid, preload_stdlib=preload)
+    config.update(submission=str(submission), uid=uid, gid=uid, preload_stdlib=preload, parent=os.getpid())
     argv = [*python, worker_py, json.dumps(config)]
     return WorkerPlan(SUBPROCESS, argv, env, uid, describe(SUBPROCESS), str(submission), config)
 

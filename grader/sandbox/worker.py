@@ -34,7 +34,7 @@ def _drop_privileges(uid: int, gid: int) -> None:
 
 # The trusted modules every worker needs, imported before the privilege drop and before student code.
 _PRELOAD = ("math", "numpy", "simiam.control", "simiam.course.weeks", "simiam.course.loader",
-            "grader.sandbox.limits", "grader.sandbox.seccomp", "grader.sandbox.worker_loop")
+            "grader.sandbox.limits", "grader.sandbox.seccomp", "grader.sandbox.worker_loop", "ctypes")
 # Standard-library modules a student may import, preloaded only when the dedicated uid cannot read the
 # Python environment (subprocess mode, interpreter under a private home directory).
 _STDLIB = ("cmath", "random", "statistics", "functools", "itertools", "collections", "copy", "time", "json",
@@ -42,6 +42,19 @@ _STDLIB = ("cmath", "random", "statistics", "functools", "itertools", "collectio
            "inspect", "signal", "socket", "select", "subprocess", "threading", "struct", "io", "string",
            "textwrap", "heapq", "bisect", "decimal", "fractions", "datetime", "array", "queue", "contextlib",
            "encodings.idna")
+
+
+def _die_with_parent(parent: int | None) -> None:
+    """SIGKILL this worker if the process that started it dies (set after the uid change, which clears it)."""
+    import ctypes
+    import signal
+
+    try:
+        ctypes.CDLL(None).prctl(1, int(signal.SIGKILL), 0, 0, 0)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        return
+    if parent is not None and os.getppid() != parent:
+        os._exit(70)  # the parent is already gone
 
 
 def _bootstrap(config: dict) -> None:
@@ -58,6 +71,7 @@ def _bootstrap(config: dict) -> None:
             pass  # a missing optional module shows up later as a clear error
     if config.get("uid") is not None:
         _drop_privileges(int(config["uid"]), int(config["gid"]))
+    _die_with_parent(config.get("parent"))
     from grader.sandbox.limits import apply_rlimits
     from grader.sandbox.seccomp import install
 
