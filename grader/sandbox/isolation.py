@@ -3,11 +3,13 @@
 `bwrap` mode: own PID, network, IPC and UTS namespaces; a root made of read-only binds of /usr, the Python
 environment, the trusted simiam package and the grader's probe/sandbox modules, the spliced submission at
 /submission; a private size-capped /tmp; minimal /proc and /dev; all capabilities dropped.
-`subprocess` mode: a separate process in its own session with the same rlimits and the same clean
-environment, but it sees the file system as its uid does.
+`subprocess` mode: a separate process in its own session with the same rlimits, the same clean
+environment and the same seccomp filter (no network sockets), but it sees the file system as its uid does.
 
 As root, the worker drops to a dedicated uid picked per session, so RLIMIT_NPROC binds and every process the
-student starts (even after setsid or a double fork) can be killed by uid.
+student starts (even after setsid or a double fork) can be killed by uid. Both modes also make the worker
+die with the grading process (bubblewrap's --die-with-parent; PR_SET_PDEATHSIG in the worker). Both are
+tied to the *thread* that started the worker: start and use a session from one long-lived thread.
 """
 
 from __future__ import annotations
