@@ -30,6 +30,8 @@ from collections.abc import Callable, Iterable
 from multiprocessing.connection import Connection, wait
 from typing import Any
 
+from grader.batch.proctree import die_with_parent, exit_reason, kill_tree
+
 GradeFn = Callable[[dict], dict]
 
 
@@ -68,7 +70,7 @@ def _child_main(ref: str, task_fd: int, reply_fd: int) -> None:
     which then stops the children in order.
     """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    _die_with_parent()
+    die_with_parent()
     tasks, replies = Connection(task_fd, writable=False), Connection(reply_fd, readable=False)
     fn = resolve(ref)
     while True:
@@ -77,81 +79,6 @@ def _child_main(ref: str, task_fd: int, reply_fd: int) -> None:
         except (EOFError, OSError):
             return
         replies.send_bytes(call_to_reply(fn, json.loads(raw)))
-
-
-def _die_with_parent() -> None:
-    """Ask Linux to SIGKILL this process when the runner dies (even by SIGKILL), so no orphan grades on."""
-    try:
-        import ctypes
-        libc = ctypes.CDLL(None, use_errno=True)
-        libc.prctl(1, signal.SIGKILL, 0, 0, 0)       # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):
-        return
-    if os.getppid() == 1:                            # the runner died before the request took effect
-        os._exit(1)
-
-
-def _descendants(pid: int) -> list[int]:
-    """Every process below ``pid`` (Linux /proc scan; empty elsewhere)."""
-    children: dict[int, list[int]] = {}
-    try:
-        entries = os.listdir("/proc")
-    except OSError:
-        return []
-    for entry in entries:
-        if not entry.isdigit():
-            continue
-        try:
-            with open(f"/proc/{entry}/stat", "rb") as stream:
-                ppid = int(stream.read().rsplit(b")", 1)[1].split()[1])
-        except (OSError, IndexError, ValueError):
-            continue
-        children.setdefault(ppid, []).append(int(entry))
-    found, todo = [], [pid]
-    while todo:
-        for child in children.get(todo.pop(), []):
-            found.append(child)
-            todo.append(child)
-    return found
-
-
-def kill_tree(pid: int) -> None:
-    """SIGKILL a process, its process group and all its descendants (frozen first so none can fork)."""
-    seen: set[int] = set()
-    for _ in range(3):                       # stop, re-scan for anything forked meanwhile, stop again
-        new = [p for p in [pid, *_descendants(pid)] if p not in seen]
-        if not new:
-            break
-        for p in new:
-            _signal(p, signal.SIGSTOP)
-        seen.update(new)
-    try:
-        os.killpg(pid, signal.SIGKILL)
-    except OSError:
-        pass
-    for p in seen:
-        _signal(p, signal.SIGKILL)
-
-
-def _signal(pid: int, sig: int) -> None:
-    try:
-        os.kill(pid, sig)
-    except OSError:
-        pass
-
-
-def exit_reason(code: int | None) -> str:
-    """Plain words for a child's exit code."""
-    if code is None:
-        return "the grading process stopped answering"
-    if code < 0:
-        try:
-            name = signal.Signals(-code).name
-        except ValueError:
-            name = f"signal {-code}"
-        hint = " (out of memory?)" if -code == signal.SIGKILL else ""
-        return f"the grading process was killed by {name}{hint}"
-    return f"the grading process exited with status {code}"
 
 
 class _Slot:

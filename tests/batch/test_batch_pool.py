@@ -13,7 +13,8 @@ from pathlib import Path
 import batch_fake_grader
 import pytest
 
-from grader.batch.pool import WorkerPool, function_ref, kill_tree
+from grader.batch.pool import WorkerPool, function_ref
+from grader.batch.proctree import kill_tree
 
 
 def task(sid: str, answer: str) -> dict:
