@@ -30,9 +30,11 @@ class CappedOutput:
         self._thread.start()
 
     def _drain(self) -> None:
+        poller = select.poll()  # not select(): no FD_SETSIZE limit in a busy batch grader
+        poller.register(self._fd, select.POLLIN)
         try:
             while True:
-                select.select([self._fd], [], [])
+                poller.poll()
                 with self._lock:  # held from read to append, so settle() sees every byte accounted
                     data = os.read(self._fd, 1 << 16)
                     if not data:

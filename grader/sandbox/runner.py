@@ -16,7 +16,6 @@ import signal
 import subprocess
 import sys
 import time
-from dataclasses import dataclass
 
 from grader.sandbox.errors import StudentTimeout, WorkerDied
 from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
@@ -30,14 +29,6 @@ _SIGNAL_MEANING = {
     signal.SIGSEGV: "it crashed (segmentation fault)",
     signal.SIGABRT: "it aborted",
 }
-
-
-@dataclass
-class Exchange:
-    """Timing of one request: wall seconds between sending and the answer."""
-
-    op: str
-    seconds: float
 
 
 class WorkerProcess:
@@ -83,8 +74,7 @@ class WorkerProcess:
     def _write(self, data: bytes) -> None:
         view = memoryview(data)
         while view:
-            _r, w, _x = select.select([], [self._req_w], [], 5.0)
-            if not w:
+            if not _wait(self._req_w, select.POLLOUT, 5.0):
                 self._die("it stopped reading requests")
             view = view[os.write(self._req_w, view):]
 
@@ -107,8 +97,7 @@ class WorkerProcess:
                 self.kill()
                 what = "the worker did not start" if op == "start" else "no answer"
                 raise StudentTimeout(f"{what} within the time limit")
-            ready, _w, _x = select.select([self._resp_r], [], [], left)
-            if not ready:
+            if not _wait(self._resp_r, select.POLLIN, left):
                 continue
             data = os.read(self._resp_r, 1 << 16)
             if not data:
@@ -166,6 +155,13 @@ class WorkerProcess:
 
     def close(self) -> None:
         self.kill()
+
+
+def _wait(fd: int, event: int, seconds: float) -> bool:
+    """True when `fd` is ready for `event` (or hung up) within `seconds`; poll() has no FD_SETSIZE limit."""
+    poller = select.poll()
+    poller.register(fd, event)
+    return bool(poller.poll(max(0, int(seconds * 1000) + 1)))
 
 
 def kill_uid(uid: int, rounds: int = 20) -> None:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import pytest
 from conftest import HONEST, honest_probe, make_submission
 
@@ -56,3 +58,16 @@ def test_a_missing_interpreter_is_reported_as_unavailable(monkeypatch, shared_di
     with StudentSession(1, make_submission(shared_dir / "again", "_honest"), sandbox="subprocess",
                         probes="sandbox_probes", extra_paths=(str(PROBES),)) as session:
         assert honest_probe(session) == pytest.approx(HONEST)
+
+
+def test_a_grader_with_many_open_files_still_talks_to_its_worker(shared_dir, mode):
+    from conftest import PROBES
+
+    held = [os.open(os.devnull, os.O_RDONLY) for _ in range(1100)]  # pipe fds land above FD_SETSIZE
+    try:
+        with StudentSession(1, make_submission(shared_dir, "_honest"), sandbox=mode,
+                            probes="sandbox_probes", extra_paths=(str(PROBES),)) as session:
+            assert honest_probe(session) == pytest.approx(HONEST)
+    finally:
+        for fd in held:
+            os.close(fd)
