@@ -2,7 +2,9 @@
 
 Why not ``concurrent.futures.ProcessPoolExecutor``: it cannot stop one hung task. Killing its worker marks
 the whole pool broken and fails every other submission in flight, and a worker that dies (out of memory,
-segfault in a C extension) does the same. Here each slot owns one ``spawn``-started process and a pipe:
+segfault in a C extension) does the same. Here each slot owns one grading process (a fresh interpreter,
+as with the ``spawn`` start method, but started with ``subprocess`` so it also works inside daemonic Dask
+workers) and a private pipe pair:
 
 - tasks and replies cross the pipe as plain JSON (``send_bytes``), never pickles;
 - a slot whose task runs past the wall budget has its whole process tree killed (the grading process and
