@@ -46,7 +46,8 @@ def make_submission(base: Path, attack: str) -> Path:
 
 def _modes() -> list:
     works, why = bwrap_works()
-    return [pytest.param(BWRAP, marks=pytest.mark.skipif(not works, reason=why)), SUBPROCESS]
+    return [pytest.param(BWRAP, marks=[pytest.mark.sandbox, pytest.mark.skipif(not works, reason=why)]),
+            SUBPROCESS]
 
 
 @pytest.fixture(params=_modes())
