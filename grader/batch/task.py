@@ -40,7 +40,10 @@ def grade_task(task: dict) -> dict:
         began = time.monotonic()
         result = grade_submission(week=week, submission=submission, seed=int(task["seed"]),
                                   hidden=bool(task["hidden"]), out_dir=report_dir,
-                                  sandbox=task.get("sandbox", "auto"))
+                                  sandbox=task.get("sandbox", "auto"),
+                                  # what the student types at home to replay a failing case: their own
+                                  # ./assignments/weekN, not the batch's temporary folder
+                                  replay_prefix=f"grade week{week}")
         timing = result.get("timing") if isinstance(result.get("timing"), dict) else {}
         # the whole call, report writing included: what the batch adds is measured against this
         result["timing"] = {**timing, "grade_submission_seconds": round(time.monotonic() - began, 3)}
