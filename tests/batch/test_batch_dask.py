@@ -6,7 +6,7 @@ import json
 from pathlib import Path
 
 import pytest
-from conftest import make_class
+from batch_helpers import make_class
 
 from grader.batch import runner
 from grader.batch.executors import DaskExecutor, ExecutorError

@@ -14,7 +14,7 @@ import time
 from pathlib import Path
 
 import pytest
-from conftest import HERE, make_class, make_zip
+from batch_helpers import HERE, make_class, make_zip
 
 from grader.batch import cache, runner
 from grader.batch.runner import BatchError, BatchOptions, run_batch

@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from conftest import make_zip
+from batch_helpers import make_zip
 
 from grader.batch.submissions import Student, content_hash, discover, find_root, read_submission
 from grader.batch.zips import Limits

@@ -7,7 +7,7 @@ import zipfile
 from pathlib import Path
 
 import pytest
-from conftest import make_zip
+from batch_helpers import make_zip
 
 from grader.batch.zips import Limits, SubmissionRefused, read_zip
 
