@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy
 import pytest
-from conftest import AS_ROOT, HONEST, attack, honest_probe
+from sandbox_helpers import AS_ROOT, HONEST, attack, honest_probe
 
 from grader.sandbox import validate
 from grader.sandbox.errors import StudentError, StudentTimeout, WorkerDied

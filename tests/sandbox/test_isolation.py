@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 
 import pytest
-from conftest import HONEST, honest_probe, make_submission
+from sandbox_helpers import HONEST, honest_probe, make_submission
 
 from grader.sandbox import isolation
 from grader.sandbox.errors import SandboxUnavailable
@@ -19,7 +19,7 @@ def no_bwrap(monkeypatch):
 
 
 def test_auto_falls_back_to_a_subprocess_and_says_what_holds(no_bwrap, shared_dir):
-    from conftest import PROBES
+    from sandbox_helpers import PROBES
 
     with StudentSession(1, make_submission(shared_dir, "_honest"), sandbox="auto", probes="sandbox_probes",
                         extra_paths=(str(PROBES),)) as session:
@@ -39,7 +39,7 @@ def test_unknown_sandbox_name(shared_dir):
 
 
 def test_a_missing_interpreter_is_reported_as_unavailable(monkeypatch, shared_dir):
-    from conftest import PROBES
+    from sandbox_helpers import PROBES
 
     real = isolation.plan_worker
 
@@ -61,7 +61,7 @@ def test_a_missing_interpreter_is_reported_as_unavailable(monkeypatch, shared_di
 
 
 def test_a_grader_with_many_open_files_still_talks_to_its_worker(shared_dir, mode):
-    from conftest import PROBES
+    from sandbox_helpers import PROBES
 
     held = [os.open(os.devnull, os.O_RDONLY) for _ in range(1100)]  # pipe fds land above FD_SETSIZE
     try:

@@ -8,7 +8,7 @@ import time
 from pathlib import Path
 
 import pytest
-from conftest import AS_ROOT
+from sandbox_helpers import AS_ROOT
 
 from grader.sandbox.runner import _uid_alive
 
@@ -16,7 +16,7 @@ GRADER = """
 import os, sys, threading
 sys.path.insert(0, {here!r})
 from pathlib import Path
-from conftest import make_submission, PROBES
+from sandbox_helpers import make_submission, PROBES
 from grader.sandbox.limits import Limits
 from grader.sandbox.session import StudentSession
 s = StudentSession(1, make_submission(Path({base!r}), "infinite_loop"), Limits(call_seconds=30),

@@ -6,7 +6,7 @@ import math
 
 import numpy
 import pytest
-from wrong import naive
+from sandbox_wrong import naive
 
 from grader.sandbox import protocol
 from grader.sandbox.protocol import LineReader, NotJSON, ProtocolError, decode, encode, to_json

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import pytest
-from wrong import naive
+from sandbox_wrong import naive
 
 from grader.sandbox.validate import BadValue, as_float, as_float_list, as_matrix
 
