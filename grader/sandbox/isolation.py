@@ -113,14 +113,14 @@ def bwrap_works() -> tuple[bool, str]:
     return True, ""
 
 
-def _bwrap_base(as_root: bool, tmp_bytes: int) -> list[str]:
+def _bwrap_base(as_root: bool, tmp_bytes: int, drop_uid: bool = False) -> list[str]:
     args = ["--die-with-parent", "--new-session", "--unshare-pid", "--unshare-net", "--unshare-ipc",
             "--unshare-uts", "--unshare-cgroup-try", "--hostname", "sandbox", "--cap-drop", "ALL"]
-    if as_root:
+    if not as_root:
+        args += ["--unshare-user"]
+    elif drop_uid:
         # Only to drop to the dedicated uid in the worker's bootstrap; gone after the drop.
         args += ["--cap-add", "CAP_SETUID", "--cap-add", "CAP_SETGID"]
-    else:
-        args += ["--unshare-user"]
     args += ["--ro-bind", "/usr", "/usr"]
     for top in ("/bin", "/sbin", "/lib", "/lib64", "/lib32"):
         if os.path.islink(top):
@@ -158,8 +158,11 @@ def _mkdirs(path: str, made: set[str]) -> list[str]:
 
 def pick_uid() -> int | None:
     """A uid no process uses now, so that killing by uid can only hit this session's processes
-    (None when the grader is not root and cannot switch uid)."""
+    (None when the grader is not root and cannot switch uid, or no spare uid is mapped here)."""
     if os.geteuid() != 0:
+        return None
+    low, high = _uid_range()
+    if high - low < 1000:
         return None
     used = set()
     for entry in os.scandir("/proc"):
@@ -169,9 +172,29 @@ def pick_uid() -> int | None:
             except OSError:
                 pass
     while True:
-        uid = random.randrange(*_UID_RANGE)
+        uid = random.randrange(low, high)
         if uid not in used:
             return uid
+
+
+def _mapped(path: str) -> list[tuple[int, int]]:
+    """[start, end) id ranges usable in this user namespace (from /proc/self/uid_map or gid_map)."""
+    try:
+        with open(path) as f:
+            return [(int(a), int(a) + int(n)) for a, _b, n in (line.split() for line in f if line.strip())]
+    except (OSError, ValueError):
+        return [(0, 65536)]
+
+
+def _uid_range() -> tuple[int, int]:
+    """_UID_RANGE if it is mapped for both uids and gids, else the largest mapped range above 1000
+    (rootless containers often map only 65536 ids)."""
+    ranges = [(max(a, c), min(b, d)) for a, b in _mapped("/proc/self/uid_map")
+              for c, d in _mapped("/proc/self/gid_map") if min(b, d) > max(a, c)]
+    if any(a <= _UID_RANGE[0] and _UID_RANGE[1] <= b for a, b in ranges):
+        return _UID_RANGE
+    spans = [(max(a, 1000), min(b, 65534)) for a, b in ranges]
+    return max(spans, key=lambda r: r[1] - r[0], default=(0, 0))
 
 
 def _readable_by_others(path: str) -> bool:
@@ -208,7 +231,7 @@ def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int, ui
     if mode == BWRAP:
         uid = uid if as_root else None
         config.update(submission="/submission", uid=uid, gid=uid)
-        args = [bwrap_path() or "bwrap", *_bwrap_base(as_root, tmp_bytes),
+        args = [bwrap_path() or "bwrap", *_bwrap_base(as_root, tmp_bytes, drop_uid=uid is not None),
                 *_bind_args(trusted_binds(probes_file) + list(extra_paths))]
         args += ["--ro-bind", str(submission), "/submission", "--chdir", "/submission", "--clearenv"]
         for key, value in env.items():
@@ -232,6 +255,9 @@ def describe(mode: str) -> str:
     if os.geteuid() != 0:
         return NOTES[SUBPROCESS].format(net=net, uid=" under your own user (the process limit counts all "
                                         "your processes, and processes that leave the session may survive)")
+    if _uid_range()[1] - _uid_range()[0] < 1000:
+        return NOTES[SUBPROCESS].format(net=net, uid=" that stays root (no spare uid is mapped here, so the "
+                                        "process limit does not bind and files root can write are writable)")
     env_note = " (the Python environment is private to root here, so only modules preloaded before the " \
                "drop can be imported)" if _private_env() else ""
     return NOTES[SUBPROCESS].format(net=net, uid=f" under its own unprivileged uid{env_note}")
