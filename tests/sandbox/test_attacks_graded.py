@@ -76,9 +76,13 @@ def test_attack_scores_no_more_than_honest(tmp_path, honest_points, name, status
 
 
 def test_printed_results_are_not_the_score(tmp_path):
-    result, check = grade(graded_attack(tmp_path, "fake_output"))
+    out = tmp_path / "reports"
+    result, check = grade(graded_attack(tmp_path, "fake_output"), out_dir=out)
     assert check["points"] == 0 and result["score"] == 0
     assert "100/100" in result["student_output"] and '"score": 10.0' in result["student_output"]
+    html = (out / "week2.html").read_text()  # printed HTML is shown as text, never as markup
+    assert '<h1 id="forged">' not in html and "<script>alert(1)" not in html
+    assert "&lt;h1 id=&#34;forged&#34;&gt;" in html  # it is there, escaped
 
 
 def test_flooding_output_is_truncated(tmp_path):
