@@ -34,7 +34,9 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("path", nargs="?", default=None, help="submission folder (default ./assignments/weekN)")
     p.add_argument("--solutions", action="store_true", help="grade solutions/weekN (the reference solutions)")
     p.add_argument(
-        "--out", default="reports", help="folder for weekN.json and weekN.html (default ./reports)"
+        "--out",
+        default=None,
+        help="folder for weekN.json and weekN.html (default ./reports; with --batch ./reports/batch-weekN)",
     )
     p.add_argument("--json", dest="json_file", default=None, help="also write the result JSON to this file")
     p.add_argument(
@@ -51,7 +53,12 @@ def _parser() -> argparse.ArgumentParser:
     )
     batch = p.add_argument_group("batch grading (one sub-folder or .zip per student)")
     batch.add_argument("--batch", default=None, metavar="DIR", help="grade every submission in DIR")
-    batch.add_argument("--jobs", type=int, default=1, help="submissions graded at once")
+    batch.add_argument(
+        "--jobs", type=int, default=None, help="submissions graded at once (default: the number of cores)"
+    )
+    batch.add_argument(
+        "--timeout", type=float, default=None, help="seconds one submission may take in all (default 300)"
+    )
     batch.add_argument("--force", action="store_true", help="regrade what is already graded")
     batch.add_argument("--quiet", action="store_true", help="no progress bar")
     batch.add_argument("--executor", default="local", choices=("local", "dask"))
@@ -123,7 +130,7 @@ def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
     shown = "--solutions" if args.solutions else str(folder)
     traces: dict[str, dict] = {}
     # a replay of one check prints its answer and leaves the full report of the last grading alone
-    out_dir = None if args.check else Path(args.out)
+    out_dir = None if args.check else Path(args.out or "reports")
     result = grade_submission(
         week,
         folder,
