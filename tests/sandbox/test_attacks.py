@@ -324,3 +324,16 @@ def test_a_concurrent_submission_is_not_readable(open_session):
     session = open_session("read_solutions")
     with pytest.raises(StudentError, match="Permission denied|No such file"):
         attack(session, paths=[target])
+
+
+@pytest.mark.parametrize("kind, error, message", [
+    ("close", WorkerDied, "closed the grader's channel|exit status"),
+    ("stop", StudentTimeout, "no answer within"),
+    ("ignore_term", StudentTimeout, "no answer within"),
+])
+def test_channel_and_signal_abuse(open_one, kind, error, message):
+    session = open_one("channel_abuse", Limits(call_seconds=0.7))
+    with pytest.raises(error, match=message):
+        attack(session, kind=kind)
+    assert honest_probe(session) == pytest.approx(HONEST)  # a fresh worker answers
+    assert session.starts == 2
