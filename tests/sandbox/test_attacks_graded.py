@@ -109,7 +109,6 @@ def test_reading_the_solution_from_disk_gets_nothing(tmp_path, honest_points):
     assert check["points"] == 0 < honest_points and "your vel_r was 0" in check["message"]
 
 
-@only_bwrap
 def test_asking_a_server_for_the_answer_gets_nothing(tmp_path):
     server = socket.socket()
     server.bind(("127.0.0.1", 0))
