@@ -168,3 +168,11 @@ def test_a_forged_estimate_does_not_move_the_robot(tmp_path):
     honest, honest_check = grade(REPO / "solutions" / "week2", only=scenario)
     result, check = grade(graded_attack(tmp_path, "pose"), only=scenario)
     assert honest_check["points"] > 0 and check["points"] == 0
+
+
+@pytest.mark.parametrize("name, fragment", [("os_exit", "exit status 0"), ("kill_parent", "your vel_r was 0"),
+                                            ("fork_bomb", "your vel_r was 0"), ("sys_exit", "sys.exit(0)")])
+def test_without_bubblewrap_too(tmp_path, name, fragment):
+    result, check = grade(graded_attack(tmp_path, name), sandbox="subprocess")
+    assert result["isolation"] == "subprocess" and "no bubblewrap" in result["isolation_note"]
+    assert check["points"] == 0 and fragment in check["message"]
