@@ -1,9 +1,13 @@
-"""A small seccomp filter the worker installs on itself: no network sockets, in every isolation mode.
+"""A small seccomp filter the worker installs on itself: no network, no new namespaces, less kernel surface.
 
 bubblewrap already gives the worker an empty network namespace; without bubblewrap this filter is what
-keeps student code off the network. It allows every system call except socket() for any family but
-AF_UNIX (errno EACCES), io_uring_setup (which could open sockets behind the filter's back) and any call
-through a foreign ABI (x32, or 32-bit int 0x80 on x86-64, which would reach socketcall), all ENOSYS/EACCES.
+keeps student code off the network. It allows every system call except:
+- socket() for any family but AF_UNIX (EACCES);
+- clone() with a CLONE_NEW* flag, unshare(), setns() (no user namespace in which to play root);
+- clone3() (ENOSYS, so the C library falls back to clone(), whose flags the filter can see);
+- io_uring_setup (it could open sockets behind the filter's back), bpf, perf_event_open, userfaultfd,
+  keyctl/add_key/request_key;
+- any call through a foreign ABI (x32, or 32-bit int 0x80 on x86-64, which would reach socketcall).
 Only x86-64 and aarch64 are known; elsewhere nothing is installed and `install()` returns False.
 """
 
@@ -20,21 +24,28 @@ _SECCOMP_MODE_FILTER = 2
 _RET_ALLOW = 0x7FFF0000
 _RET_ERRNO = 0x00050000
 _AF_UNIX = 1
-# machine -> (AUDIT_ARCH, __NR_socket, __NR_io_uring_setup, first foreign-ABI syscall number or None)
+_CLONE_NEW_ANY = 0x7E020000  # NEWNS | NEWCGROUP | NEWUTS | NEWIPC | NEWUSER | NEWPID | NEWNET
+
+# per machine: AUDIT_ARCH, first foreign-ABI number (or None), and the system call numbers used
 _ARCHES = {
-    "x86_64": (0xC000003E, 41, 425, 0x40000000),
-    "aarch64": (0xC00000B7, 198, 425, None),
+    "x86_64": (0xC000003E, 0x40000000, {
+        "socket": 41, "clone": 56, "clone3": 435, "unshare": 272, "setns": 308, "io_uring_setup": 425,
+        "bpf": 321, "perf_event_open": 298, "userfaultfd": 323, "keyctl": 250, "add_key": 248,
+        "request_key": 249}),
+    "aarch64": (0xC00000B7, None, {
+        "socket": 198, "clone": 220, "clone3": 435, "unshare": 97, "setns": 268, "io_uring_setup": 425,
+        "bpf": 280, "perf_event_open": 241, "userfaultfd": 282, "keyctl": 219, "add_key": 217,
+        "request_key": 218}),
 }
+_DENIED = ("unshare", "setns", "io_uring_setup", "bpf", "perf_event_open", "userfaultfd", "keyctl", "add_key",
+           "request_key")
 
 # classic BPF opcodes
 _LD_W_ABS = 0x20
 _JEQ_K = 0x15
 _JGE_K = 0x35
+_JSET_K = 0x45
 _RET_K = 0x06
-
-
-def _insn(code: int, jt: int, jf: int, k: int) -> bytes:
-    return struct.pack("HBBI", code, jt, jf, k)
 
 
 def program(machine: str | None = None) -> bytes | None:
@@ -42,23 +53,46 @@ def program(machine: str | None = None) -> bytes | None:
     arch = _ARCHES.get(machine or platform.machine())
     if arch is None:
         return None
-    audit_arch, nr_socket, nr_io_uring, foreign = arch
-    deny = _RET_ERRNO | errno.EACCES
-    insns = [
-        _insn(_LD_W_ABS, 0, 0, 4),                      # 0: A = arch
-        _insn(_JEQ_K, 1, 0, audit_arch),                # 1: native ABI? go on : deny
-        _insn(_RET_K, 0, 0, _RET_ERRNO | errno.ENOSYS),  # 2: foreign ABI (i386 socketcall...)
-        _insn(_LD_W_ABS, 0, 0, 0),                      # 3: A = syscall number
-        _insn(_JGE_K, 5, 0, foreign if foreign is not None else 0xFFFFFFFF),  # 4: x32 ABI -> 10
-        _insn(_JEQ_K, 2, 0, nr_socket),                 # 5: socket -> 8
-        _insn(_JEQ_K, 3, 0, nr_io_uring),               # 6: io_uring_setup -> 10
-        _insn(_RET_K, 0, 0, _RET_ALLOW),                # 7: everything else
-        _insn(_LD_W_ABS, 0, 0, 16),                     # 8: A = low word of args[0] (the family)
-        _insn(_JEQ_K, 1, 0, _AF_UNIX),                  # 9: AF_UNIX -> 11
-        _insn(_RET_K, 0, 0, deny),                      # 10: other families, io_uring, x32
-        _insn(_RET_K, 0, 0, _RET_ALLOW),                # 11
-    ]  # a jump goes to (its index + 1 + offset)
-    return b"".join(insns)
+    audit_arch, foreign, nr = arch
+    # (code, true-label, false-label, k); labels are resolved to relative jumps below
+    code: list[tuple[int, str | None, str | None, int]] = [
+        (_LD_W_ABS, None, None, 4),                      # A = arch
+        (_JEQ_K, "native", "enosys", audit_arch),
+        ("native", None, None, 0),
+        (_LD_W_ABS, None, None, 0),                      # A = system call number
+        (_JGE_K, "deny", None, foreign if foreign is not None else 0xFFFFFFFF),
+        (_JEQ_K, "enosys", None, nr["clone3"]),
+        *[(_JEQ_K, "deny", None, nr[name]) for name in _DENIED],
+        (_JEQ_K, "socket", None, nr["socket"]),
+        (_JEQ_K, "clone", None, nr["clone"]),
+        (_RET_K, None, None, _RET_ALLOW),
+        ("socket", None, None, 0),
+        (_LD_W_ABS, None, None, 16),                     # A = low word of args[0]: the address family
+        (_JEQ_K, "allow", "deny", _AF_UNIX),
+        ("clone", None, None, 0),
+        (_LD_W_ABS, None, None, 16),                     # A = low word of args[0]: the clone flags
+        (_JSET_K, "deny", "allow", _CLONE_NEW_ANY),
+        ("deny", None, None, 0),
+        (_RET_K, None, None, _RET_ERRNO | errno.EACCES),
+        ("enosys", None, None, 0),
+        (_RET_K, None, None, _RET_ERRNO | errno.ENOSYS),
+        ("allow", None, None, 0),
+        (_RET_K, None, None, _RET_ALLOW),
+    ]
+    labels: dict[str, int] = {}
+    insns: list[tuple[int, str | None, str | None, int]] = []
+    for item in code:
+        if isinstance(item[0], str):
+            labels[item[0]] = len(insns)
+        else:
+            insns.append(item)  # type: ignore[arg-type]
+    out = []
+    for i, (op, jt, jf, k) in enumerate(insns):
+        # a jump lands on (its index + 1 + offset)
+        t = labels[jt] - i - 1 if jt else 0
+        f = labels[jf] - i - 1 if jf else 0
+        out.append(struct.pack("HBBI", op, t, f, k))
+    return b"".join(out)
 
 
 def install() -> bool:
