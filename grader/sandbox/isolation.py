@@ -34,7 +34,8 @@ _UID_RANGE = (200_000, 260_000)
 
 NOTES = {
     BWRAP: "bubblewrap sandbox: no network, private /tmp, own PID namespace, read-only view of only the "
-           "spliced submission and the Python environment; rlimits on time, memory, processes, files.",
+           "spliced submission and the Python environment, an unprivileged uid and a seccomp filter; "
+           "limits on time, memory, processes, files and output.",
     SUBPROCESS: "no bubblewrap: student code runs in a separate, resource-limited process{uid}{net}; it is "
                 "killed with its whole process tree, and only JSON crosses back, but it can read what its "
                 "user can read (for example solutions/ if it is world-readable) and write to /tmp while it "
