@@ -59,6 +59,9 @@ class WorkerPlan:
 def python_paths() -> list[str]:
     """sys.path entries the worker needs: site-packages and the directories holding simiam and grader."""
     paths = [p for p in site.getsitepackages() if os.path.isdir(p)]
+    # what this interpreter really uses (getsitepackages can miss a layout, e.g. PYTHONPATH installs)
+    paths += [p for p in sys.path if p.endswith(("site-packages", "dist-packages")) and os.path.isdir(p)
+              and p not in paths]
     for package in (simiam, grader):
         root = str(Path(package.__file__).resolve().parent.parent)
         if root not in paths:
@@ -69,7 +72,7 @@ def python_paths() -> list[str]:
 def trusted_binds(probes_file: Path | None) -> list[str]:
     """Files and folders the worker may read, besides /usr and the submission (bwrap mode)."""
     binds = {sys.prefix, sys.base_prefix, str(Path(sys.executable).resolve().parent.parent)}
-    binds.update(p for p in site.getsitepackages() if os.path.isdir(p))
+    binds.update(p for p in python_paths() if "-packages" in p)
     simiam_dir = Path(simiam.__file__).resolve().parent
     grader_dir = Path(grader.__file__).resolve().parent
     binds.update({str(simiam_dir), str(grader_dir / "__init__.py"), str(grader_dir / "sandbox")})
