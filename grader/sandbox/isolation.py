@@ -257,8 +257,9 @@ def describe(mode: str) -> str:
 
     net = " with network sockets blocked by a seccomp filter" if program() else " with network access"
     if os.geteuid() != 0:
-        return NOTES[SUBPROCESS].format(net=net, uid=" under your own user (the process limit counts all "
-                                        "your processes, and processes that leave the session may survive)")
+        return NOTES[SUBPROCESS].format(net=net, uid=" under your own user, so it could also signal the "
+                                        "grader, write where you can write and leave processes behind: "
+                                        "treat this result as advisory")
     if _uid_range()[1] - _uid_range()[0] < 1000:
         return NOTES[SUBPROCESS].format(net=net, uid=" that stays root (no spare uid is mapped here, so the "
                                         "process limit does not bind and files root can write are writable)")
