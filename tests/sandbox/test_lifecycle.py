@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import shutil
 import subprocess
 import sys
 import time
@@ -22,7 +23,7 @@ from grader.sandbox.session import StudentSession
 s = StudentSession(1, make_submission(Path({base!r}), "infinite_loop"), Limits(call_seconds=30),
                    sandbox={mode!r}, probes="sandbox_probes", extra_paths=(str(PROBES),))
 s.load()
-print(s._worker.plan.uid, flush=True)
+print(s._worker.plan.uid, s._work.path.parent, flush=True)
 threading.Timer(0.3, lambda: os._exit(9)).start()  # the grader dies while the student's loop runs
 s.call("probe", name="attack", args={{}})
 """
@@ -33,7 +34,8 @@ def test_workers_die_with_the_grader(mode, shared_dir):
     script = GRADER.format(here=str(Path(__file__).parent), base=str(shared_dir), mode=mode)
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
     assert done.returncode == 9, done.stderr
-    uid = int(done.stdout.split()[0])
+    uid, work = int(done.stdout.split()[0]), Path(done.stdout.split()[1])
+    shutil.rmtree(work, ignore_errors=True)  # a killed grader cannot clean up after itself
     deadline = time.monotonic() + 5
     while _uid_alive(uid) and time.monotonic() < deadline:
         time.sleep(0.05)
