@@ -9,7 +9,7 @@ and they cross when both parameters lie in the closed interval [0, 1] (touching 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 
 import numpy as np
 
@@ -73,3 +73,52 @@ class ObstacleEdges:
         a body lying within `reach` of (x, y) could touch."""
         return [p for p in self.polygons
                 if not (x + reach < p[0] or x - reach > p[1] or y + reach < p[2] or y - reach > p[3])]
+
+
+def culled_crossings(xs: Sequence[float], ys: Sequence[float],
+                     polygons: Sequence[PolygonBox]) -> Iterator[tuple[float, float]]:
+    """The crossing points (taken along the polygon's edge, as `crossing` does) of the closed polygon with
+    world vertices (xs, ys) against `polygons`, with bounding-box culling that only skips pairs whose padded
+    boxes are apart, so no real crossing is dropped. This is the hot loop of every step: it is written out
+    flat for speed, and callers stop it at the first point when that is all they need."""
+    pxmin = min(xs)
+    pxmax = max(xs)
+    pymin = min(ys)
+    pymax = max(ys)
+    n = len(xs)
+    for oxmin, oxmax, oymin, oymax, table in polygons:
+        if pxmax < oxmin or pxmin > oxmax or pymax < oymin or pymin > oymax:
+            continue
+        # only the obstacle edges whose box meets the polygon's box can cross one of its edges
+        table = [e for e in table if not (pxmax < e[4] or pxmin > e[5] or pymax < e[6] or pymin > e[7])]
+        if not table:
+            continue
+        for k in range(n):
+            x1 = xs[k]
+            y1 = ys[k]
+            x2 = xs[k + 1 - n]
+            y2 = ys[k + 1 - n]
+            if x1 < x2:
+                axmin, axmax = x1, x2
+            else:
+                axmin, axmax = x2, x1
+            if y1 < y2:
+                aymin, aymax = y1, y2
+            else:
+                aymin, aymax = y2, y1
+            x21 = x2 - x1
+            y21 = y2 - y1
+            for x3, y3, x43, y43, exmin, exmax, eymin, eymax in table:
+                if axmax < exmin or axmin > exmax or aymax < eymin or aymin > eymax:
+                    continue
+                d = y43 * x21 - x43 * y21
+                if d == 0.0:
+                    continue
+                y13 = y1 - y3
+                x13 = x1 - x3
+                ua = (x43 * y13 - y43 * x13) / d
+                if ua < 0.0 or ua > 1.0:
+                    continue
+                ub = (x21 * y13 - y21 * x13) / d
+                if 0.0 <= ub <= 1.0:
+                    yield x1 + x21 * ua, y1 + y21 * ua
