@@ -22,7 +22,9 @@ def _parser() -> argparse.ArgumentParser:
     mig = sub.add_parser("migrate", help="carry your filled blocks from last week's folder into this week's")
     mig.add_argument("week", help="the week to migrate into, e.g. week3")
     mig.add_argument("--from", dest="source", required=True, help="last week's folder")
-    mig.add_argument("--to", dest="target", default=None, help="this week's folder (default ./assignments/weekN)")
+    mig.add_argument(
+        "--to", dest="target", default=None, help="this week's folder (default ./assignments/weekN)"
+    )
     mig.add_argument("--dry-run", action="store_true", help="say what would move, change nothing")
 
     bench = sub.add_parser("bench", help="steps per second of one QuickBot in the week-4 world")
