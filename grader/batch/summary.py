@@ -1,7 +1,8 @@
 """``summary.html``: the class at a glance, for the instructor.
 
 Per-check pass rates and mean points, the score distribution as an inline SVG histogram (the report
-package's SVG helpers), and a table of students linking to each report. Self-contained (no scripts, no
+package's SVG helpers), and a table of students linking to each report and straight to each scenario
+run's replay in it (red when the check that ran it failed). Self-contained (no scripts, no
 external files), built from the per-student results only.
 """
 
@@ -14,6 +15,7 @@ from jinja2 import Environment
 
 from grader.batch.exports import check_ids, class_max_score
 from grader.batch.store import write_atomic
+from grader.report.html import run_anchor
 from grader.report.svg import histogram_svg, pass_rate_svg
 
 
@@ -34,6 +36,25 @@ def check_stats(results: dict[str, dict]) -> list[dict]:
     return stats
 
 
+def replay_links(result: dict, page: str) -> list[dict]:
+    """One link per scenario run the student's report embeds, to its replay section (``page#run-...``),
+    in check order, each run once; named by the check's last id part and the run's number, marked
+    ``failed`` when any check measured on that run did not pass."""
+    runs: dict[str, dict] = {}
+    for check in result.get("checks") or []:
+        details = check.get("details") if isinstance(check, dict) else None
+        keys = details.get("traces") if isinstance(details, dict) else None
+        for key in keys if isinstance(keys, list) else []:
+            if isinstance(key, str):
+                name, _, number = key.partition("#")
+                text = f"{name.rsplit('.', 1)[-1]} {number or 1}"
+                run = runs.setdefault(key, {"href": f"{page}#{run_anchor(key)}", "checks": [],
+                                            "failed": False, "text": text})
+                run["checks"].append(f"{check.get('id')}: {check.get('status')}")
+                run["failed"] = run["failed"] or check.get("status") != "passed"
+    return [{**run, "title": "; ".join(run.pop("checks"))} for run in runs.values()]
+
+
 def graded_scores(results: dict[str, dict]) -> list[float]:
     """The scores of the graded students (the others have no meaningful score)."""
     return [float(r["score"]) for r in results.values()
@@ -46,7 +67,7 @@ _TEMPLATE = """<!doctype html>
 body{font-family:system-ui,sans-serif;margin:2em;color:#222}table{border-collapse:collapse;margin:1em 0}
 td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}td.n{text-align:right}
 .bar{display:inline-block;height:10px;background:#3b7dd8}.graded{color:#176b2c}
-.invalid,.crashed,.timeout{color:#a11}
+.invalid,.crashed,.timeout,a.failed{color:#a11}td.replays{white-space:nowrap}
 </style></head><body>
 <h1>Week {{ week }}: class summary</h1>
 <p>{{ results|length }} students:
@@ -69,11 +90,14 @@ rerun the same command to finish.</p>{% endif %}
 <td class="n">{{ "%.2f"|format(c.mean_points) }}</td><td class="n">{{ c.errors }}</td></tr>
 {% endfor %}</table>
 <h2>Students</h2>
-<table><tr><th>student</th><th>status</th><th>score</th><th>message</th></tr>
+<table><tr><th>student</th><th>status</th><th>score</th><th>replays</th><th>message</th></tr>
 {% for s in students %}<tr><td><a href="{{ s.href }}">{{ s.id }}</a></td>
 <td class="{{ s.status }}">{{ s.status }}</td>
 <td class="n">{% if s.score is not none %}{{ "%g"|format(s.score) }}
 {%- if max_score %} / {{ "%g"|format(max_score) }}{% endif %}{% endif %}</td>
+<td class="replays">{% for r in s.replays %}<a href="{{ r.href }}" title="{{ r.title }}"
+{%- if r.failed %} class="failed"{% endif %}>{{ r.text }}</a>{% if not loop.last %} · {% endif %}
+{%- endfor %}</td>
 <td>{{ s.message }}</td></tr>
 {% endfor %}</table>
 </body></html>
@@ -91,6 +115,7 @@ def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) ->
     for result in results.values():
         status_counts[str(result.get("status"))] = status_counts.get(str(result.get("status")), 0) + 1
     students = [{"id": sid, "href": quote(f"{stems[sid]}.html"), "status": r.get("status"),
+                 "replays": replay_links(r, quote(f"{stems[sid]}.html")),
                  "score": r.get("score") if isinstance(r.get("score"), (int, float)) else None,
                  "message": " ".join(str(r.get("message") or "").split())[:300]}
                 for sid, r in sorted(results.items())]

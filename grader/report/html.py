@@ -140,16 +140,25 @@ def _slug(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9_.-]+", "_", text).strip("_") or "run"
 
 
+def run_anchor(trace_key: str) -> str:
+    """The id of the section holding a run's replay in the report (`report.html#<id>`); the batch summary
+    links each student's replays with it."""
+    return "run-" + _slug(trace_key)
+
+
 def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
-               hrefs: dict[str, str], max_rows: int = REPLAY_ROWS) -> list[dict]:
+               hrefs: dict[str, str], shown: set[str], max_rows: int = REPLAY_ROWS) -> list[dict]:
+    """The runs of one check; `shown` holds the trace keys an earlier check already shows (their replay
+    is linked, not embedded again, and each section id stays unique in the page)."""
     from simiam.viewer.replay import TraceFormatError, render_replay
 
     views = []
     keys = _trace_keys(check, traces)
-    shared = False
     if not keys:  # a check that measured a run another check kept (same goal): plot it, link the replay
-        keys, shared = _same_goal(check, traces), True
+        keys = _same_goal(check, traces)
     for k, key in enumerate(keys):
+        shared = key in shown
+        shown.add(key)
         trace = traces[key]
         if not isinstance(trace, dict):
             continue
@@ -157,7 +166,8 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
         meta = trace.get("meta") or {}
         label = meta.get("check_label") or key
         steps = trace.get("steps") or {}
-        view: dict[str, Any] = {"key": key, "label": label, "anchor": "run-" + _slug(key), "problem": "",
+        anchor = run_anchor(key) + ("-in-" + _slug(str(check.get("id", ""))) if shared else "")
+        view: dict[str, Any] = {"key": key, "label": label, "anchor": anchor, "problem": "",
                                 "shared": None,
                                 "trajectory": None, "heading": None, "srcdoc": None, "href": hrefs.get(key)}
         if not steps.get("t"):
@@ -169,7 +179,7 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
         if goal or trace.get("week") == 3:
             view["heading"] = svg.heading_svg(trace, goal=goal, settle_time=metrics.get("settle_time"))
         if shared:
-            view["shared"] = "run-" + _slug(key)
+            view["shared"] = run_anchor(key)
             view["href"] = None
         elif replays == "inline" and not view["href"]:
             try:
@@ -181,14 +191,14 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
     return views
 
 
-def _check_view(check: dict, traces: dict, replays: str, hrefs: dict[str, str],
+def _check_view(check: dict, traces: dict, replays: str, hrefs: dict[str, str], shown: set[str],
                 max_rows: int = REPLAY_ROWS) -> dict:
     details = check.get("details") if isinstance(check.get("details"), dict) else {}
     runs = _runs(details)
-    shown = {"runs", "counterexample", "replay", "traces", "stdout", "stderr", "case"} | set(METRICS)
-    extra = {k: v for k, v in details.items() if k not in shown}
+    listed = {"runs", "counterexample", "replay", "traces", "stdout", "stderr", "case"} | set(METRICS)
+    extra = {k: v for k, v in details.items() if k not in listed}
     status = str(check.get("status", ""))
-    views = _run_views(check, traces, runs, replays, hrefs, max_rows)
+    views = _run_views(check, traces, runs, replays, hrefs, shown, max_rows)
     return {
         "id": str(check.get("id", "")), "name": str(check.get("name") or check.get("id", "")),
         "kind": str(check.get("kind", "")), "visibility": str(check.get("visibility", "") or ""),
@@ -248,7 +258,8 @@ def render_report(result: dict, traces: dict[str, dict] | None = None, *, replay
     traces = traces or {}
     embedded = sum(1 for k in traces if k not in (replay_hrefs or {})) if replays == "inline" else 0
     max_rows = max(300, min(REPLAY_ROWS, REPORT_ROWS // max(1, embedded)))
-    checks = [_check_view(c, traces, replays, replay_hrefs or {}, max_rows)
+    shown: set[str] = set()
+    checks = [_check_view(c, traces, replays, replay_hrefs or {}, shown, max_rows)
               for c in result.get("checks") or [] if isinstance(c, dict)]
     return _env().get_template("report.html.j2").render(summary=_summary(result, checks), checks=checks)
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import csv
 import json
+import re
 import shutil
 import zipfile
 from pathlib import Path
@@ -61,6 +62,15 @@ def test_week3_class_with_the_real_grader(tmp_path: Path) -> None:
     assert json.loads((tmp_path / "two" / "zipped.json").read_text())["batch"]["root"] == "week3"
     assert "not a readable zip" in rows["broken"]["message"]
     assert (tmp_path / "two" / "sol.html").stat().st_size > 1000
+    # the summary links each scenario run's replay, and every link lands on a replay in the report
+    summary = (tmp_path / "two" / "summary.html").read_text()
+    links = re.findall(r'href="(sol\.html)#(run-[^"]+)"', summary)
+    assert len(links) >= 3
+    report_html = (tmp_path / "two" / "sol.html").read_text()
+    for _, anchor in links:
+        assert report_html.count(f'id="{anchor}"') == 1
+        run = report_html.split(f'id="{anchor}"', 1)[1].split('<div class="run"', 1)[0]
+        assert "<iframe" in run.split("</article>", 1)[0]
     again = run_batch(BatchOptions(**base, out=tmp_path / "two", jobs=2))
     assert again["this_run"] == {"graded_now": 0, "skipped": 5}
     one_report = run_batch(BatchOptions(**base, out=tmp_path / "one", jobs=1))

@@ -11,7 +11,7 @@ import batch_fake_grader
 
 from grader.batch.exports import gradebook_csv, gradescope_result, safe_cell
 from grader.batch.progress import Progress, format_duration
-from grader.batch.summary import check_stats, graded_scores, summary_html
+from grader.batch.summary import check_stats, graded_scores, replay_links, summary_html
 
 TASK = {"week": 3, "seed": 1, "student": "x"}
 
@@ -64,6 +64,25 @@ def test_summary_statistics_histogram_and_escaping() -> None:
     assert ": 3</title></rect>" in page and ": 1</title></rect>" in page   # bob 3 times, alice, carl once
     assert 'href="ann%20%232.html"' in page
     assert "80%" in page          # fake.a: alice, bob and the two copies of bob pass; carl fails
+
+
+def test_summary_links_each_run_replay_once_and_marks_failed_runs() -> None:
+    results = klass()
+    runs = ["week3.go_to_goal.reach_goals", "week3.go_to_goal.reach_goals#2"]
+    results["bob"]["checks"][1]["details"]["traces"] = runs
+    results["bob"]["checks"].append({"id": "week3.pid.settle_time", "status": "passed", "points": 1.0,
+                                     "max_points": 1.0, "details": {"traces": runs[1:]}})
+    links = replay_links(results["bob"], "b%20b.html")
+    assert [(r["href"], r["text"]) for r in links] == [
+        ("b%20b.html#run-week3.go_to_goal.reach_goals", "reach_goals 1"),
+        ("b%20b.html#run-week3.go_to_goal.reach_goals_2", "reach_goals 2")]
+    assert links[1]["title"] == "week3.fake.b: failed; week3.pid.settle_time: passed"
+    assert [r["failed"] for r in links] == [True, True]   # a run is red if any check on it failed
+    results["bob"]["checks"][1]["status"] = "passed"
+    assert [r["failed"] for r in replay_links(results["bob"], "b.html")] == [False, False]
+    page = summary_html(results, {sid: sid for sid in results}, {"week": 3, "seed": 1, "grader": "g"})
+    assert 'href="bob.html#run-week3.go_to_goal.reach_goals_2"' in page and "<th>replays</th>" in page
+    assert replay_links(results["alice"], "alice.html") == []      # no scenario run kept: no link
 
 
 class Clock:

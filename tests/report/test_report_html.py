@@ -160,6 +160,20 @@ def test_a_check_that_measured_another_checks_run_plots_it(week3_result):
     assert not svg_elements(section.split("</article>", 1)[0])
 
 
+def test_a_run_two_checks_list_is_embedded_once_and_ids_stay_unique(week3_result):
+    result, traces = week3_result
+    result["checks"].append(
+        {"id": "week3.pid.overshoot", "name": "overshoot", "kind": "scenario", "points": 0.0,
+         "max_points": 1.0, "status": "failed", "message": "overshoot 30 %",
+         "details": {"goal": [1.0, 1.0], "overshoot": 0.3, "traces": ["week3.go_to_goal.reaches_goals"]}})
+    html = render_report(result, traces)
+    assert html.count("<iframe") == 2                      # the two runs, not three
+    ids = re.findall(r' id="([^"]+)"', html)
+    assert len(ids) == len(set(ids))
+    section = html.split('id="check-week3.pid.overshoot"', 1)[1].split("</article>", 1)[0]
+    assert 'href="#run-week3.go_to_goal.reaches_goals"' in section and len(svg_elements(section)) == 2
+
+
 def test_unlabelled_runs_take_their_trace_labels(week3_result):
     result, traces = week3_result
     for run in result["checks"][2]["details"]["runs"]:
