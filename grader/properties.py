@@ -135,6 +135,11 @@ def run_property(
             return Outcome(0.0, message, {"case": state["last"]}, status=status)
         return _failed(ctx, check_id, str(exc), state["last"])
     except HypothesisException as exc:  # e.g. a flaky answer: the same input passed once and failed once
+        if state["fatal"] is not None:  # a timeout mid-search can look flaky to Hypothesis: say what it was
+            from grader.checks import sandbox_message
+
+            status, message = sandbox_message(state["fatal"])
+            return Outcome(0.0, message, {"case": state["last"]}, status=status)
         return Outcome(
             0.0,
             f"your code gave different answers to the same input ({type(exc).__name__})",

@@ -84,3 +84,26 @@ def test_nan_and_exceptions_get_clear_messages(tmp_path: Path) -> None:
     assert crash["status"] == "failed"
     assert "ZeroDivisionError" in crash["message"] and "differential_drive.py:" in crash["message"]
     assert crash["message"].startswith("with v = ")
+
+
+def test_a_timeout_in_the_middle_of_a_property_search_is_reported_as_a_timeout() -> None:
+    """An infinite loop stops the search at once and says so, whatever Hypothesis makes of the aborted
+    search (it used to be reported as 'your code gave different answers to the same input')."""
+    from hypothesis import strategies as st
+
+    from grader.checks import Context
+    from grader.properties import run_property
+    from grader.sandbox.errors import StudentTimeout
+
+    calls = []
+
+    def case(ctx: Context, x: float) -> None:
+        calls.append(x)
+        if len(calls) == 1:  # the worker is restarted after a kill, so later calls may answer
+            raise StudentTimeout("no answer within 2 s, the time limit per call")
+
+    outcome = run_property(Context(week=3, seed=1, session=None), "week3.pid.integral",
+                           {"x": st.floats(-1, 1)}, case)
+    assert outcome.fraction == 0.0 and outcome.status == "timeout"
+    assert outcome.message == ("your code did not answer in time: "
+                               "no answer within 2 s, the time limit per call")
