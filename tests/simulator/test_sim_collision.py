@@ -12,6 +12,7 @@ from simiam.physics.transform import transform_fast
 from simiam.robot.quickbot import BASE_PLATE
 
 FRONT = 0.0686  # the base plate's front vertex (0.0686, 0)
+SIDE = 0.0534  # the plate's left edge (-0.0465, 0.0534)-(0.0335, 0.0534)
 
 
 def box(x0, y0, x1, y1):
@@ -26,6 +27,11 @@ CASES = [
     ("inside a big block (no edge crossing)", (0.0, 0.0, 0.0), [box(-1.0, -1.0, 1.0, 1.0)], False),
     ("block inside the plate", (0.0, 0.0, 0.0), [box(-0.01, -0.01, 0.01, 0.01)], False),
     ("rotated, touching a side", (0.0, 0.0, np.pi / 2), [box(-0.5, FRONT, 0.5, 1.0)], True),
+    # an obstacle's corner on a plate edge: the crossing lies at the end of the *obstacle's* edge (u_b = 0)
+    ("obstacle corner touching the plate's left side", (0.0, 0.0, 0.0),
+     [np.array([[0.0, SIDE], [0.05, 0.2], [-0.05, 0.2]])], True),
+    ("obstacle corner 1 mm off the left side", (0.0, 0.0, 0.0),
+     [np.array([[0.0, SIDE + 0.001], [0.05, 0.2], [-0.05, 0.2]])], False),
 ]
 
 
