@@ -27,7 +27,7 @@ class Student:
 
     id: str            # the folder name, or the zip name without ``.zip``
     path: Path
-    kind: str          # "folder" | "zip" | "clash" (both a folder and a zip with this id)
+    kind: str          # "folder" | "zip" | "clash" (both a folder and a zip with this id) | "link"
 
 
 @dataclass
@@ -42,12 +42,16 @@ class Submission:
 
 
 def discover(batch_dir: Path) -> list[Student]:
-    """Every student in ``batch_dir``, sorted by id. Hidden entries and stray files are skipped."""
+    """Every student in ``batch_dir``, sorted by id. Hidden entries and stray files are skipped; a link
+    to a folder or zip is listed (kind "link") so that it is reported, never followed nor silently lost."""
     found: dict[str, list[tuple[str, Path]]] = {}
     for entry in sorted(batch_dir.iterdir()):
         if entry.name.startswith(".") or entry.name.startswith("__MACOSX"):
             continue
-        if entry.is_dir() and not entry.is_symlink():
+        if entry.is_symlink() and (entry.is_dir() or entry.suffix.lower() == ".zip"):
+            found.setdefault(entry.name[:-4] if entry.suffix.lower() == ".zip" else entry.name,
+                             []).append(("link", entry))
+        elif entry.is_dir() and not entry.is_symlink():
             found.setdefault(entry.name, []).append(("folder", entry))
         elif entry.suffix.lower() == ".zip" and entry.is_file() and not entry.is_symlink():
             found.setdefault(entry.name[:-4], []).append(("zip", entry))
@@ -64,6 +68,9 @@ def read_submission(student: Student, limits: Limits | None = None) -> Submissio
     try:
         if student.kind == "clash":
             raise SubmissionRefused(f"both a folder and a zip are named {student.id!r}; keep one")
+        if student.kind == "link":
+            raise SubmissionRefused(f"{student.path.name} is a link; links are not followed "
+                                    "(copy the submission into the class folder)")
         raw = read_zip(student.path, limits) if student.kind == "zip" else read_folder(student.path, limits)
         root, files = find_root(raw)
         if not files:
@@ -160,7 +167,9 @@ def _hash_path(path: Path) -> str:
     """Hash of what is on disk for a refused submission (so fixing the zip triggers a regrade)."""
     digest = hashlib.sha256(path.name.encode())
     try:
-        if path.is_file():
+        if path.is_symlink():       # never read through a link
+            digest.update(os.readlink(path).encode())
+        elif path.is_file():
             with path.open("rb") as stream:
                 while chunk := stream.read(1 << 20):
                     digest.update(chunk)

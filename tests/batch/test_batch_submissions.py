@@ -23,6 +23,13 @@ def test_discover_lists_folders_and_zips_by_id(tmp_path: Path) -> None:
     assert found == {"alice": "folder", "bob": "zip", "carol": "clash"}
     clash = read_submission(next(s for s in discover(tmp_path) if s.id == "carol"))
     assert clash.refused and "both a folder and a zip" in clash.refused
+    os.symlink(tmp_path / "alice", tmp_path / "dave")            # a linked student is reported, not lost
+    os.symlink(tmp_path / "bob.ZIP", tmp_path / "erin.zip")
+    found = {s.id: s for s in discover(tmp_path)}
+    assert found["dave"].kind == found["erin"].kind == "link"
+    for sid in ("dave", "erin"):
+        linked = read_submission(found[sid])
+        assert linked.refused and "is a link; links are not followed" in linked.refused and not linked.files
 
 
 def test_folder_link_outside_is_refused_inside_is_read(tmp_path: Path) -> None:
