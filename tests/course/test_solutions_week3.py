@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 
+from simiam.control import Inputs, Pose2D
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
 from simiam.course.weeks import week_config
@@ -100,3 +101,25 @@ def test_placeholder_gains_are_caught(tmp_path):
 def test_overshooting_gains_are_caught(tmp_path):
     _, overshoot = settle_and_overshoot(_folder(tmp_path, "week3_gains_overshoot"), GOALS[0], 0.05)
     assert overshoot > 0.10
+
+
+def heading_error_across_pi(folder: Path) -> float:
+    """The error GoToGoal keeps (e_k_1) when the estimate heads at 3.0 rad and the goal lies at -3.0 rad:
+    0.283 rad (a small left turn) once wrapped into [-pi, pi], -6.0 if not."""
+    sub = load_submission(folder, WEEK)
+    assert sub.ok, sub.errors
+    ctrl = sub.module("go_to_goal").GoToGoal()
+    inputs = Inputs(v=0.2, x_g=math.cos(-3.0), y_g=math.sin(-3.0))
+    ctrl.execute(None, Pose2D(0.0, 0.0, 3.0), inputs, 0.033)
+    return ctrl.e_k_1
+
+
+def test_heading_error_is_wrapped():
+    assert heading_error_across_pi(ROOT / "solutions/week3") == pytest.approx(2 * math.pi - 6.0, abs=1e-12)
+
+
+def test_unwrapped_heading_error_is_caught(tmp_path):
+    folder = tmp_path / "no_wrap"
+    shutil.copytree(ROOT / "solutions/week3", folder)
+    shutil.copy(ROOT / "tests/data/wrong/week3_no_wrap/go_to_goal.py", folder)
+    assert heading_error_across_pi(folder) == pytest.approx(-6.0, abs=1e-12)

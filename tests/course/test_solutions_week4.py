@@ -78,7 +78,45 @@ def test_transposed_rotation_is_caught(tmp_path):
     assert max(ir_points_error(_folder(tmp_path, "week4_transform_transposed"))) > 1e-2
 
 
-def test_sensor_gains_are_symmetric_and_free_space_steers_slightly_right():
+def sensor_gains(folder: Path) -> list[float]:
+    """Each sensor's weight in u_ao, measured from outside: move one sensor's IR point (a nearer raw value)
+    and compare how far u_ao moves with how far the point moved (u_ao = sum g_i * (p_i - robot))."""
+    sub = load_submission(folder, WEEK)
+    assert sub.ok, sub.errors
+    robot = RobotView(WEEK.spec, sub)
+    inputs = sub.module("qb_supervisor").QBSupervisor().inputs()
+
+    def u_ao_and_points(raw):
+        robot.update({"ticks": [0, 0], "ir_raw": raw})
+        ao = sub.module("avoid_obstacles").AvoidObstacles()
+        ao.execute(robot, Pose2D(0.3, -0.2, 0.7), inputs, 0.033)
+        return [float(c) for c in ao.u_ao[:2]], ao.ir_distances_wf
+
+    u0, p0 = u_ao_and_points([133] * 5)
+    gains = []
+    for i in range(5):
+        u, p = u_ao_and_points([400 if k == i else 133 for k in range(5)])
+        moved = math.hypot(p[0][i] - p0[0][i], p[1][i] - p0[1][i])
+        gains.append(math.hypot(u[0] - u0[0], u[1] - u0[1]) / moved)
+    return gains
+
+
+def test_sensor_gains_are_symmetric():
+    """The manual: weights symmetric with respect to the left and right sides (sensors 1/5 and 2/4)."""
+    g = sensor_gains(ROOT / "solutions/week4")
+    assert g[0] == pytest.approx(g[4], rel=1e-9) and g[1] == pytest.approx(g[3], rel=1e-9), g
+    assert min(g) > 0, g
+
+
+def test_asymmetric_gains_are_caught(tmp_path):
+    folder = tmp_path / "asymmetric"
+    shutil.copytree(ROOT / "solutions/week4", folder)
+    shutil.copy(ROOT / "tests/data/wrong/week4_asymmetric_gains/avoid_obstacles.py", folder)
+    g = sensor_gains(folder)
+    assert g[1] != pytest.approx(g[3], rel=1e-9), g
+
+
+def test_free_space_steers_slightly_right():
     """With nothing in range u_ao points almost straight ahead, slightly right (the mounts' asymmetry)."""
     sub = load_submission(ROOT / "solutions/week4", WEEK)
     robot = RobotView(WEEK.spec, sub)
