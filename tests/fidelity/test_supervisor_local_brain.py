@@ -3,14 +3,18 @@
 from __future__ import annotations
 
 import math
+import types
 from pathlib import Path
 
 import pytest
 
+from simiam.control import RobotView
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
 from simiam.course.weeks import week_config
-from simiam.simulator import validate_command
+from simiam.robot.quickbot import spec_for_week
+from simiam.simulator import Simulator, validate_command
+from simiam.world import load_world
 
 ROOT = Path(__file__).resolve().parents[2]
 READINGS = {"t": 0.033, "dt": 0.033, "ticks": [0, 0], "ir_raw": [133, 133, 133, 133, 133]}
@@ -65,3 +69,56 @@ def test_stop_state_reports_no_reference_heading():
     brain = _brain(3, {"state": "stop"})
     cmd = brain.step(READINGS)
     assert cmd["debug"]["theta_g"] is None and (cmd["vel_r"], cmd["vel_l"]) == (0.0, 0.0)
+
+
+def _reachable(root) -> list:
+    """Every object student code can reach from `root` through attributes and containers (modules,
+    classes and functions are not followed: they are code, not state)."""
+    seen: dict[int, object] = {}
+    todo = [root]
+    while todo:
+        obj = todo.pop()
+        if id(obj) in seen or isinstance(obj, (type, types.ModuleType, types.FunctionType,
+                                               types.MethodType, types.BuiltinFunctionType)):
+            continue
+        seen[id(obj)] = obj
+        if isinstance(obj, dict):
+            todo += list(obj.keys()) + list(obj.values())
+        elif isinstance(obj, (list, tuple, set)):
+            todo += list(obj)
+        elif hasattr(obj, "tolist"):
+            todo.append(obj.tolist())
+        else:
+            todo += list(getattr(obj, "__dict__", {}).values())
+            todo += [getattr(obj, s) for s in getattr(type(obj), "__slots__", ()) if hasattr(obj, s)]
+    return list(seen.values())
+
+
+def true_pose_leaks(make_view) -> list:
+    """Drive the week-4 solution for 3 s; what of the true state the robot handed to student code reaches:
+    the Simulator itself, or the true x / y as a number."""
+    sub = load_submission(ROOT / "solutions/week4", 4)
+    brain = LocalBrain(sub, week_config(4))
+    sim = Simulator(load_world("week4"), brain, spec_for_week(4), dt=0.05)
+    brain.robot = brain.supervisor.robot = make_view(sub, sim)
+    sim.run(3.0)
+    x, y, _ = sim.pose
+    assert math.hypot(x, y) > 0.1  # it moved, so the true position is not a start value
+    return [o for o in _reachable(brain.supervisor)
+            if o is sim or (type(o) is float and o in (x, y))]
+
+
+class _LeakyRobotView(RobotView):
+    """WRONG: keeps a handle on the simulator (as a careless `robot.parent` would)."""
+
+    def __init__(self, spec, sub, sim):
+        super().__init__(spec, sub)
+        self.parent = sim
+
+
+def test_student_code_cannot_reach_the_true_pose():
+    assert true_pose_leaks(lambda sub, sim: RobotView(spec_for_week(4), sub)) == []
+
+
+def test_a_leaking_robot_is_caught():
+    assert true_pose_leaks(lambda sub, sim: _LeakyRobotView(spec_for_week(4), sub, sim))
