@@ -37,22 +37,27 @@ def check_stats(results: dict[str, dict]) -> list[dict]:
 
 
 def replay_links(result: dict, page: str) -> list[dict]:
-    """One link per scenario run the student's report embeds, to its replay section (``page#run-...``),
-    in check order, each run once; named by the check's last id part and the run's number, marked
-    ``failed`` when any check measured on that run did not pass."""
+    """Links to the replay sections (``page#run-...``) of the scenario runs a student's report embeds,
+    each run once, grouped by the check that kept it: ``[{"name": "reach_goals", "runs": [{"href",
+    "text": "1", "title", "failed"}, ...]}]``. A run is ``failed`` when any check measured on it failed."""
     runs: dict[str, dict] = {}
+    groups: dict[str, list[dict]] = {}
     for check in result.get("checks") or []:
         details = check.get("details") if isinstance(check, dict) else None
         keys = details.get("traces") if isinstance(details, dict) else None
         for key in keys if isinstance(keys, list) else []:
-            if isinstance(key, str):
+            if not isinstance(key, str):
+                continue
+            if key not in runs:
                 name, _, number = key.partition("#")
-                text = f"{name.rsplit('.', 1)[-1]} {number or 1}"
-                run = runs.setdefault(key, {"href": f"{page}#{run_anchor(key)}", "checks": [],
-                                            "failed": False, "text": text})
-                run["checks"].append(f"{check.get('id')}: {check.get('status')}")
-                run["failed"] = run["failed"] or check.get("status") != "passed"
-    return [{**run, "title": "; ".join(run.pop("checks"))} for run in runs.values()]
+                runs[key] = {"href": f"{page}#{run_anchor(key)}", "text": number or "1", "checks": [],
+                             "failed": False}
+                groups.setdefault(name.rsplit(".", 1)[-1], []).append(runs[key])
+            runs[key]["checks"].append(f"{check.get('id')}: {check.get('status')}")
+            runs[key]["failed"] = runs[key]["failed"] or check.get("status") != "passed"
+    for run in runs.values():
+        run["title"] = "; ".join(run.pop("checks"))
+    return [{"name": name, "runs": group} for name, group in groups.items()]
 
 
 def graded_scores(results: dict[str, dict]) -> list[float]:
@@ -65,7 +70,7 @@ _TEMPLATE = """<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>Week {{ week }} class summary</title>
 <style>
 body{font-family:system-ui,sans-serif;margin:2em;color:#222}table{border-collapse:collapse;margin:1em 0}
-td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}td.n{text-align:right}
+td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}td.n{text-align:right;white-space:nowrap}
 .bar{display:inline-block;height:10px;background:#3b7dd8}.graded{color:#176b2c}
 .invalid,.crashed,.timeout,a.failed{color:#a11}td.replays{white-space:nowrap}
 </style></head><body>
@@ -95,9 +100,9 @@ rerun the same command to finish.</p>{% endif %}
 <td class="{{ s.status }}">{{ s.status }}</td>
 <td class="n">{% if s.score is not none %}{{ "%g"|format(s.score) }}
 {%- if max_score %} / {{ "%g"|format(max_score) }}{% endif %}{% endif %}</td>
-<td class="replays">{% for r in s.replays %}<a href="{{ r.href }}" title="{{ r.title }}"
-{%- if r.failed %} class="failed"{% endif %}>{{ r.text }}</a>{% if not loop.last %} · {% endif %}
-{%- endfor %}</td>
+<td class="replays">{% for g in s.replays %}{{ g.name }}{% for r in g.runs %} <a href="{{ r.href }}"
+title="{{ r.title }}"{% if r.failed %} class="failed"{% endif %}>{{ r.text }}</a>{% endfor %}
+{%- if not loop.last %} · {% endif %}{% endfor %}</td>
 <td>{{ s.message }}</td></tr>
 {% endfor %}</table>
 </body></html>

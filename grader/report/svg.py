@@ -295,9 +295,11 @@ def histogram_svg(scores: Sequence[float], max_score: float, bins: int = 10, wid
     for s in scores:
         if _finite(s) and max_score > 0:
             counts[min(bins - 1, max(0, int(s / max_score * bins)))] += 1
-    ml, mb, mt = 34, 30, 22
+    # mt leaves a line for the count above the tallest bar below the title (font 11: the title's baseline
+    # at 14, the count's at mt - 3); mr keeps the last tick's label (max_score, centred) inside the picture
+    ml, mr, mb, mt = 34, 22, 30, 34
     peak = max(counts) or 1
-    bw = (width - ml - 8) / bins
+    bw = (width - ml - mr) / bins
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {width} {height}" width="{width}" '
            f'height="{height}" role="img" class="plot histogram" {_FONT}><title>{escape(title)}</title>'
            f'<text x="{ml}" y="14" font-weight="600">{escape(title)}</text>']
@@ -315,7 +317,7 @@ def histogram_svg(scores: Sequence[float], max_score: float, bins: int = 10, wid
     out.append(f'<text x="{_n(ml + bins * bw)}" y="{height - mb + 13}" text-anchor="middle" fill="#555">'
                f'{_label(max_score)}</text><line x1="{ml}" x2="{_n(ml + bins * bw)}" y1="{height - mb}" '
                f'y2="{height - mb}" stroke="#555"/><text x="{ml}" y="{height - 3}" fill="#555">score</text>'
-               f'<text x="4" y="{mt + 8}" fill="#555">{peak}</text></svg>')
+               f'<text x="4" y="{mt + 4}" fill="#555">{peak}</text></svg>')
     return Markup("".join(out))
 
 

@@ -72,14 +72,15 @@ def test_summary_links_each_run_replay_once_and_marks_failed_runs() -> None:
     results["bob"]["checks"][1]["details"]["traces"] = runs
     results["bob"]["checks"].append({"id": "week3.pid.settle_time", "status": "passed", "points": 1.0,
                                      "max_points": 1.0, "details": {"traces": runs[1:]}})
-    links = replay_links(results["bob"], "b%20b.html")
-    assert [(r["href"], r["text"]) for r in links] == [
-        ("b%20b.html#run-week3.go_to_goal.reach_goals", "reach_goals 1"),
-        ("b%20b.html#run-week3.go_to_goal.reach_goals_2", "reach_goals 2")]
-    assert links[1]["title"] == "week3.fake.b: failed; week3.pid.settle_time: passed"
-    assert [r["failed"] for r in links] == [True, True]   # a run is red if any check on it failed
+    [group] = replay_links(results["bob"], "b%20b.html")
+    assert group["name"] == "reach_goals" and [(r["href"], r["text"]) for r in group["runs"]] == [
+        ("b%20b.html#run-week3.go_to_goal.reach_goals", "1"),
+        ("b%20b.html#run-week3.go_to_goal.reach_goals_2", "2")]
+    assert group["runs"][1]["title"] == "week3.fake.b: failed; week3.pid.settle_time: passed"
+    assert [r["failed"] for r in group["runs"]] == [True, True]   # red if any check on the run failed
     results["bob"]["checks"][1]["status"] = "passed"
-    assert [r["failed"] for r in replay_links(results["bob"], "b.html")] == [False, False]
+    [group] = replay_links(results["bob"], "b.html")
+    assert [r["failed"] for r in group["runs"]] == [False, False]
     page = summary_html(results, {sid: sid for sid in results}, {"week": 3, "seed": 1, "grader": "g"})
     assert 'href="bob.html#run-week3.go_to_goal.reach_goals_2"' in page and "<th>replays</th>" in page
     assert replay_links(results["alice"], "alice.html") == []      # no scenario run kept: no link

@@ -132,6 +132,13 @@ def test_svg_helpers_escape_and_parse():
         assert "<script>" not in picture
     counts = [int(t) for t in re.findall(r"<title>[^<]*: (\d+)</title>", str(hist))]
     assert counts == [1, 0, 1, 0, 0, 0, 0, 1, 0, 2]  # 10 lands in the top bin, not an eleventh one
+    # the count over the tallest bar sits a full line (font 11) below the title, not on it
+    title_y = float(re.search(r'<text x="[\d.]+" y="([\d.]+)" font-weight="600">', str(hist)).group(1))
+    count_y = min(float(y) for y in re.findall(r'<text x="[\d.]+" y="([\d.]+)" text-anchor="middle">\d+<',
+                                               str(hist)))
+    assert count_y - 11 >= title_y
+    last_tick = re.findall(r'<text x="([\d.]+)" y="[\d.]+" text-anchor="middle" fill="#555">10.0<', str(hist))
+    assert float(last_tick[0]) + 4 * 6 / 2 <= 520   # "10.0" centred on the axis end stays inside the picture
     assert "25%" in bars and "100%" in bars
 
 
