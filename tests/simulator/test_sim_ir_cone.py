@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from sim_helpers import wrong
 
 from simiam.physics.ir_ranging import cone_range, cone_range_exact
 from simiam.physics.segments import ObstacleEdges
@@ -58,3 +59,24 @@ def test_centre_ray_is_caught():
         if (want is None and not 0.04 < got < 0.2) or (want is not None and abs(got - want) > 1e-15):
             wrong.append(name)
     assert "perpendicular wall" in wrong and "beside the axis, inside the cone's side edge" in wrong
+
+
+def cone_problems(cone_fn) -> list:
+    """reference/original-simulator.md 2.1: apex first, then five far points on the circle of radius r at
+    angles +asin(tan 3 deg), +asin(tan 1.5 deg), 0, -asin(tan 1.5 deg), -asin(tan 3 deg)."""
+    r = 0.3
+    cone = cone_fn(r, SPREAD)
+    out = [] if cone[0] == (0.0, 0.0) and len(cone) == 6 else ["apex / vertex count"]
+    for (px, py), half in zip(cone[1:], (SPREAD / 2, SPREAD / 4, 0.0, -SPREAD / 4, -SPREAD / 2), strict=True):
+        angle = math.asin(math.tan(half))
+        if abs(px - r * math.cos(angle)) > 1e-15 or abs(py - r * math.tan(half)) > 1e-15:
+            out.append((px, py, half))
+    return out
+
+
+def test_cone_vertices_as_the_original():
+    assert cone_problems(cone_polygon) == []
+
+
+def test_cone_vertex_check_catches_arc_angles():
+    assert cone_problems(wrong("ir_wrong").cone_polygon_arc_angles)

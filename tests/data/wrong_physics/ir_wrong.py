@@ -50,3 +50,12 @@ def mirrored_mounts(pose):
         raws.append(distance_to_raw(d, "week3"))
         apexes.append((xs[0], ys[0]))
     return ranges, raws, apexes
+
+
+def cone_polygon_arc_angles(r, spread):
+    """WRONG cone: far points at exactly +-spread/2 and +-spread/4 on the circle (the original puts them at
+    +-asin(tan(spread/2)) and +-asin(tan(spread/4)): its y offsets are r*tan, not r*sin)."""
+    pts = [(0.0, 0.0)]
+    for a in (spread / 2, spread / 4, 0.0, -spread / 4, -spread / 2):
+        pts.append((r * math.cos(a), r * math.sin(a)))
+    return tuple(pts)
