@@ -6,8 +6,8 @@ identified by its file, the function or class around it (`QBSupervisor.update_od
 level) and its position among the blocks of that scope, so that moving a whole function around does not
 confuse the matching.
 
-Splicing a submission into the stubs (the grader's trust boundary) lives in `simiam.course.splice`; its
-names are re-exported here (`splice`, `splice_folder`, `SpliceResult`, `FolderSpliceReport`).
+Splicing a submission into the stubs (the grader's trust boundary) lives in `simiam.course.splice`, stub
+generation in `simiam.course.stubs` (docs/design.md lists all three under blocks.py).
 """
 
 from __future__ import annotations
@@ -255,14 +255,3 @@ def replace_bodies(text: str, blocks: list[Block], bodies: dict[int, str]) -> st
         lines[b.start_line : b.end_line - 1] = source_lines(new)
     return "".join(lines)
 
-
-_SPLICE_NAMES = {"splice", "splice_folder", "SpliceResult", "FolderSpliceReport", "OutsideEdit"}
-
-
-def __getattr__(name: str):
-    # Lazy re-export: splice.py builds on this module, so it cannot be imported at the top.
-    if name in _SPLICE_NAMES:
-        from simiam.course import splice as _splice
-
-        return getattr(_splice, name)
-    raise AttributeError(name)

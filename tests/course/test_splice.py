@@ -11,7 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from simiam.course.blocks import find_blocks, splice, splice_folder
+from simiam.course.blocks import find_blocks
+from simiam.course.splice import splice, splice_folder
 
 DATA = Path(__file__).parents[1] / "data" / "blocks"
 STUB = (DATA / "stub.py").read_text()

@@ -8,8 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from simiam.course.blocks import BlockError, dedent_body, find_blocks, fingerprint, splice
+from simiam.course.blocks import BlockError, dedent_body, find_blocks, fingerprint
 from simiam.course.placeholders import PLACEHOLDERS, Placeholder, placeholder_for
+from simiam.course.splice import splice
 from simiam.course.stubs import ROOT, WEEKS, differences, generate, main, stub_text, write
 
 DATA = Path(__file__).parents[1] / "data" / "blocks"
