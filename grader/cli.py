@@ -108,15 +108,17 @@ def print_result(result: dict, out=sys.stdout) -> None:
         print(f"  note: {note}", file=out)
     if not result.get("hidden"):
         n = result.get("hidden_checks_not_run", 0)
+        ran = result.get("visible_checks", len(result["checks"]))
         print(
-            f"  {result.get('visible_checks', len(result['checks']))} visible checks ran here"
-            + (
-                f"; {n} hidden checks (other goals, other worlds, drawn per seed) run at official grading"
-                if n
-                else ""
-            ),
+            f"  {_count(ran, 'visible check')} ran here"
+            + (f"; {_count(n, 'hidden check')} (other goals, other worlds, drawn per seed) run at official "
+               "grading" if n else ""),
             file=out,
         )
+
+
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}{'' if n == 1 else 's'}"
 
 
 def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:

@@ -228,7 +228,8 @@ def _summary(result: dict, checks: list[dict]) -> dict:
                 "(other goals, other worlds, drawn per seed).")
     not_run = result.get("hidden_checks_not_run")
     if not hidden and isinstance(not_run, int) and not_run > 0:
-        note = (f"{len(checks)} visible checks ran here; {not_run} hidden check{'s' if not_run != 1 else ''} "
+        note = (f"{len(checks)} visible check{'s' if len(checks) != 1 else ''} ran here; "
+                f"{not_run} hidden check{'s' if not_run != 1 else ''} "
                 "(other goals, other worlds, drawn per seed) run at official grading.")
     problems = result.get("problems") if isinstance(result.get("problems"), dict) else {}
     notices = result.get("notices") if isinstance(result.get("notices"), list) else []
