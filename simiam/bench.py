@@ -4,6 +4,7 @@ heading, the week-4 ensure_w). The figure covers physics and brain; a second fig
 
 from __future__ import annotations
 
+import argparse
 import json
 import math
 import os
@@ -51,7 +52,7 @@ def measure(seconds: float = 60.0, repeats: int = 5, dt: float = 0.033) -> dict:
             "world": "week4", "brain": "reference avoid_obstacles (pure Python)"}
 
 
-def main(args) -> int:
+def main(args: argparse.Namespace) -> int:
     """Entry point of `simiam bench [--json] [--seconds T]`."""
     seconds = args.seconds if getattr(args, "seconds", None) else 60.0
     if seconds <= 0:

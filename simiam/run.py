@@ -8,14 +8,17 @@ student's code during the run is reported the same way, after writing the trace 
 
 from __future__ import annotations
 
+import argparse
 import math
 import sys
 from pathlib import Path
 
 from simiam.control.local_brain import LocalBrain
+from simiam.control.supervisor import Supervisor
 from simiam.course.loader import load_submission, locate_in_folder
 from simiam.course.weeks import WeekConfig, week_config
 from simiam.simulator import BrainError, Simulator, add_row
+from simiam.trace import Trace
 from simiam.world import WorldFileError, load_world
 
 REPO = Path(__file__).resolve().parents[1]
@@ -35,7 +38,7 @@ def _fail(message: str, code: int) -> int:
     return code
 
 
-def main(args) -> int:
+def main(args: argparse.Namespace) -> int:
     """Run `simiam run` with parsed arguments (week, path, solutions, seconds, dt, out, world)."""
     try:
         week = week_config(args.week)
@@ -122,7 +125,7 @@ def _write_replay(trace_json: dict, path: Path) -> Path | None:
     return write_replay(trace_json, path)
 
 
-def summary(week: WeekConfig, folder: Path, trace, sup) -> str:
+def summary(week: WeekConfig, folder: Path, trace: Trace, sup: Supervisor) -> str:
     """One paragraph: final pose, estimate, collision, and the goal (weeks 3-4) or heading (week 2)."""
     s = trace.steps
     n = len(trace) - 1

@@ -225,6 +225,7 @@ class Simulator:
 
     @property
     def steps_taken(self) -> int:
+        """How many steps have run since construction."""
         return self._k
 
     @property

@@ -53,6 +53,7 @@ class Submission:
 
     @property
     def ok(self) -> bool:
+        """True when every file loaded and defines what the week needs."""
         return not self.errors
 
     def module(self, name: str) -> types.ModuleType:

@@ -14,6 +14,7 @@ Files are written through a temporary file and a rename, so none is ever left ha
 
 from __future__ import annotations
 
+import argparse
 import os
 import sys
 import tempfile
@@ -272,7 +273,7 @@ def _week(text: str) -> int | None:
     return int(t) if t.isdigit() else None
 
 
-def main(args) -> int:
+def main(args: argparse.Namespace) -> int:
     """`simiam migrate` (args: week, source, target, dry_run). Exit 0 done, 1 refused, 2 bad arguments."""
     week = _week(args.week)
     if week not in SHIPPED or week == min(SHIPPED):

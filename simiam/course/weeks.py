@@ -9,6 +9,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from simiam.robot.quickbot import RobotSpec
 
 _COMMON = ("differential_drive.py", "quickbot.py", "go_to_angle.py", "qb_supervisor.py")
 
@@ -30,10 +34,11 @@ class WeekConfig:
 
     @property
     def name(self) -> str:
+        """"week1" .. "week4": the folder name under assignments/ and solutions/."""
         return f"week{self.number}"
 
     @property
-    def spec(self):
+    def spec(self) -> RobotSpec:
         """The week's RobotSpec (R, L, ticks/rev, max_vel, min_vel, IR mode, mounts)."""
         from simiam.robot.quickbot import spec_for_week
 
