@@ -142,6 +142,15 @@ def test_slider_and_keyboard_seek(open_page, week4_page_path):
     assert page.inner_text("#clock").startswith(f"t = {shown:.2f} /")
     page.select_option("#speed", "4")
     assert state(page)["speed"] == 4
+    page.click("#btn-rewind")                                   # the original's Rewind: back to the start
+    assert state(page)["index"] == 0 and state(page)["t"] == 0
+    page.evaluate("window.simiam.seek(5.0)")
+    page.click("#btn-follow")                                   # the follow button, as clicking the robot
+    s = state(page)
+    cx, cy = canvas_centre(s)
+    assert s["following"] and abs(s["robotScreenXY"][0] - cx) < 1.0 and abs(s["robotScreenXY"][1] - cy) < 1.0
+    page.click("#btn-follow")
+    assert not state(page)["following"]
     plot = page.locator(".plot canvas").first.bounding_box()  # clicking a plot seeks to that time
     page.mouse.click(plot["x"] + plot["width"] - 6, plot["y"] + plot["height"] / 2)
     assert state(page)["t"] > 0.9 * state(page)["tEnd"]
