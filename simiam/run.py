@@ -22,6 +22,7 @@ from simiam.trace import Trace
 from simiam.world import WorldFileError, load_world
 
 REPO = Path(__file__).resolve().parents[1]
+MAX_STEPS = 1_000_000  # 9 simulated hours at 0.033 s; a trace of that size is already ~1 GB in memory
 
 
 def resolve_folder(week: WeekConfig, path: str | None, solutions: bool) -> Path:
@@ -51,6 +52,10 @@ def main(args: argparse.Namespace) -> int:
     seconds = week.seconds if args.seconds is None else args.seconds
     if not (math.isfinite(seconds) and seconds > 0):
         return _fail(f"simiam run: --seconds must be positive, got {seconds}", 2)
+    steps = seconds / args.dt
+    if steps > MAX_STEPS:
+        return _fail(f"simiam run: {seconds:g} s at dt = {args.dt:g} s is {steps:.3g} steps; "
+                     f"at most {MAX_STEPS:,} (the trace keeps every step in memory)", 2)
     folder = resolve_folder(week, args.path, args.solutions)
     if not folder.is_dir():
         return _fail(f"simiam run: no such folder: {folder}", 2)
@@ -95,7 +100,10 @@ def main(args: argparse.Namespace) -> int:
     trace.collision = sim.first_collision
 
     out = Path(args.out)
-    csv_path, json_path = trace.write(out, stem=week.name)
+    try:
+        csv_path, json_path = trace.write(out, stem=week.name)
+    except OSError as exc:
+        return _fail(f"simiam run: cannot write the trace into {out}: {exc.strerror or exc}", 2)
     print(f"trace: {csv_path}")
     print(f"trace: {json_path}")
     replay = _write_replay(trace.to_json(), out / f"{week.name}.html")

@@ -64,9 +64,18 @@ def test_an_exception_during_the_run_exits_1_and_keeps_the_trace(tmp_path, capsy
         ({"week": "week9"}, "no such week"),
         ({"week": "week3", "dt": -1.0}, "--dt"),
         ({"week": "week3", "path": "/nonexistent/folder"}, "no such folder"),
+        ({"week": "week3", "seconds": 1e9, "dt": 1e-300}, "steps; at most"),
     ],
 )
 def test_bad_arguments_exit_2(tmp_path, capsys, argv, message):
-    args = _args(argv["week"], tmp_path, path=argv.get("path"), dt=argv.get("dt", 0.033))
+    args = _args(argv["week"], tmp_path, path=argv.get("path"), dt=argv.get("dt", 0.033),
+                 seconds=argv.get("seconds"))
     assert main(args) == 2
     assert message in capsys.readouterr().err
+
+
+def test_an_unwritable_output_folder_exits_2(tmp_path, capsys):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("")
+    assert main(_args("week1", blocker / "out", solutions=True, seconds=0.1)) == 2
+    assert "cannot write the trace" in capsys.readouterr().err
