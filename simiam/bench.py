@@ -8,6 +8,7 @@ import argparse
 import json
 import math
 import os
+import sys
 import time
 
 from simiam.reference_brains import AvoidObstaclesBrain
@@ -54,9 +55,10 @@ def measure(seconds: float = 60.0, repeats: int = 5, dt: float = 0.033) -> dict:
 
 def main(args: argparse.Namespace) -> int:
     """Entry point of `simiam bench [--json] [--seconds T]`."""
-    seconds = args.seconds if getattr(args, "seconds", None) else 60.0
-    if seconds <= 0:
-        print("simiam bench: --seconds must be positive")
+    seconds = getattr(args, "seconds", None)
+    seconds = 60.0 if seconds is None else seconds
+    if not (math.isfinite(seconds) and 0 < seconds <= 3600):
+        print(f"simiam bench: --seconds must be between 0 and 3600, got {seconds:g}", file=sys.stderr)
         return 2
     res = measure(seconds=seconds)
     if getattr(args, "json", False):

@@ -6,6 +6,8 @@ from __future__ import annotations
 import json
 from types import SimpleNamespace
 
+import pytest
+
 from simiam.bench import main
 from simiam.reference_brains import AvoidObstaclesBrain
 from simiam.robot.quickbot import spec_for_week
@@ -22,9 +24,10 @@ def test_bench_json(capsys):
     assert abs(out["us_per_step"] * out["steps_per_second"] - 1e6) < 1e-3
 
 
-def test_bench_rejects_nonpositive_seconds(capsys):
-    assert main(SimpleNamespace(json=False, seconds=-1.0)) == 2
-    assert "--seconds" in capsys.readouterr().out
+@pytest.mark.parametrize("seconds", [-1.0, 0.0, float("nan"), 1e9])
+def test_bench_rejects_bad_seconds(capsys, seconds):
+    assert main(SimpleNamespace(json=False, seconds=seconds)) == 2
+    assert "--seconds" in capsys.readouterr().err
 
 
 def test_reference_avoid_obstacles_drives_without_crashing():
