@@ -44,7 +44,7 @@ def vector(value: Any, n: int, what: str) -> list[float]:
     """Exactly n finite numbers (a list or tuple of them, or a numpy array turned into a list)."""
     if not isinstance(value, list) or len(value) != n:
         raise Mismatch(f"{what} was {describe(value)}, expected {n} numbers")
-    return [number(v, f"{what}[{i}]") for i, v in enumerate(value)]
+    return [number(v, f"{what} (value {i + 1} of {n})") for i, v in enumerate(value)]
 
 
 def matrix(value: Any, rows: int, cols: int, what: str) -> list[list[float]]:
@@ -57,7 +57,7 @@ def matrix(value: Any, rows: int, cols: int, what: str) -> list[list[float]]:
             raise Mismatch(
                 f"{what} row {i + 1} has {len(row)} values, expected {cols} ({rows}x{cols} matrix)"
             )
-        out.append([number(v, f"{what}[{i}][{j}]") for j, v in enumerate(row)])
+        out.append([number(v, f"{what} (row {i + 1}, column {j + 1})") for j, v in enumerate(row)])
     return out
 
 

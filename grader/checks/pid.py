@@ -38,7 +38,7 @@ def _calls(ctx: Context, gains: dict, poses: list, goals: list, dt: float, fresh
         where = _where(call["pose"], call["goal"])
         if not isinstance(a, dict):
             raise Mismatch(f"{where} GoToGoal.execute gave no answer")
-        v, w = vector(a.get("out"), 2, f"{where} GoToGoal.execute returned")
+        v, w = vector(a.get("out"), 2, f"{where} your GoToGoal.execute result")
         theta_g = a.get("theta_g")
         theta_g = number(theta_g, f"{where} your theta_g") if theta_g is not None else None
         out.append((v, w, theta_g))

@@ -27,7 +27,7 @@ turns = st.floats(-5.0, 5.0, allow_nan=False)
 
 def _wheels(ctx: Context, v: float, w: float) -> tuple[float, float]:
     answer = ctx.probe("uni_to_diff", v=v, w=w)
-    vel_r, vel_l = vector(answer, 2, f"with v = {fmt(v)}, w = {fmt(w)} your uni_to_diff returned")
+    vel_r, vel_l = vector(answer, 2, f"with v = {fmt(v)}, w = {fmt(w)} your uni_to_diff result")
     return vel_r, vel_l
 
 
@@ -124,7 +124,7 @@ def linearity(ctx: Context) -> Outcome:
 
 def _distances(ctx: Context, raw: list[int]) -> list[float]:
     return vector(
-        ctx.probe("ir_distances", raw=raw), 5, f"with raw values {raw} your get_ir_distances returned"
+        ctx.probe("ir_distances", raw=raw), 5, f"with raw values {raw} your get_ir_distances result"
     )
 
 

@@ -30,7 +30,7 @@ OVERSHOOT_LIMIT = 0.10
 
 def _ensure_w(ctx: Context, v: float, w: float) -> tuple[float, float]:
     answer = ctx.probe("ensure_w", v=v, w=w)
-    vel_r, vel_l = vector(answer, 2, f"with v = {fmt(v)}, w = {fmt(w)} your ensure_w returned")
+    vel_r, vel_l = vector(answer, 2, f"with v = {fmt(v)}, w = {fmt(w)} your ensure_w result")
     return vel_r, vel_l
 
 
