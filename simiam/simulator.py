@@ -13,13 +13,13 @@ One IR update runs at construction, so step 1 sees the start pose. Week 1 runs t
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
 from simiam.physics.collision import plate_collides
 from simiam.physics.ir_ranging import cone_range
-from simiam.physics.segments import ObstacleEdges
+from simiam.physics.segments import ObstacleEdges, PolygonBox
 from simiam.physics.transform import transform_fast
 from simiam.robot.dynamics import move
 from simiam.robot.ir_sensor import distance_to_raw, mounted_cone
@@ -243,11 +243,14 @@ class Simulator:
         return self._check_collision()
 
     # --- physics ---
-    def _update_ir(self) -> None:
+    def _update_ir(self, others: Sequence[PolygonBox] = ()) -> None:
+        """Recompute the IR ranges at the true pose; `others` are other robots' base plates (a Fleet)."""
         spec = self.spec
         lo, hi, mode = spec.ir_min_range, spec.ir_max_range, spec.ir_mode
         n = len(self._cones)
         near = self._obstacles.near(self._x, self._y, self._ir_reach)
+        if others:
+            near = near + list(others)
         if not near:  # open space: every cone reads max_range
             self._ir_range[:] = [hi] * n
             self._ir_raw[:] = [self._raw_nothing] * n
@@ -258,8 +261,10 @@ class Simulator:
             self._ir_range[i] = d
             self._ir_raw[i] = self._raw_nothing if d == hi else distance_to_raw(d, mode)
 
-    def _check_collision(self) -> bool:
+    def _check_collision(self, others: Sequence[PolygonBox] = ()) -> bool:
         near = self._obstacles.near(self._x, self._y, self._plate_reach)
+        if others:
+            near = near + list(others)
         if not near:
             return False
         xs, ys = transform_fast((self._x, self._y, self._theta), self._plate)
@@ -287,6 +292,14 @@ class Simulator:
 
     def step(self) -> StepRecord:
         """Advance one time step in the original's order; returns the new state."""
+        command = self._advance()
+        if not self._collide():
+            self._update_ir()
+        return self._finish(command)
+
+    # The three phases of a step, separate so that a Fleet can run the physics of all robots together.
+    def _advance(self) -> dict:
+        """Move and run the brain (week 1: the brain first); returns the validated command."""
         self._k += 1
         t = self._k * self.dt
         if self.spec.week == 1:
@@ -295,14 +308,24 @@ class Simulator:
         else:
             self._move()
             command = self._think(t)
-        self._collided = self._check_collision()
-        if self._collided:
-            if self._first_collision is None:
-                self._first_collision = {"step": self._k, "t": t, "pose": [self._x, self._y, self._theta]}
-        else:
-            self._update_ir()
+        return command
+
+    def _collide(self, others: Sequence[PolygonBox] = ()) -> bool:
+        """The collision check at the new pose; remembers the first collision."""
+        self._collided = self._check_collision(others)
+        if self._collided and self._first_collision is None:
+            self._first_collision = {"step": self._k, "t": self._k * self.dt,
+                                     "pose": [self._x, self._y, self._theta]}
+        return self._collided
+
+    def _finish(self, command: dict) -> StepRecord:
         self._last = self._record(command)
         return self._last
+
+    def plate_polygon(self) -> PolygonBox:
+        """The base plate at the current true pose, as an obstacle for other robots (a Fleet)."""
+        xs, ys = transform_fast((self._x, self._y, self._theta), self._plate)
+        return ObstacleEdges([list(zip(xs, ys, strict=True))]).polygons[0]
 
     def run(self, seconds: float, stop_on_collision: bool = True,
             until: Callable[[StepRecord], bool] | None = None) -> Trace:
