@@ -166,6 +166,15 @@ def test_collision_and_student_text(open_page, synthetic, tmp_path):
     assert "collided at t = 6.73 s" in page.inner_text("#status")
     assert "</script>" in page.inner_text("#status")  # shown as text, not run
     assert page.locator("#marks .mark").count() == 1
+    # drag the view until the crash sits 30 px from the canvas's right edge: its label must stay on the canvas
+    crash_x, crash_y = page.evaluate("window.simiam.worldToScreen(...window.simiam.trace.collision.pose)")
+    canvas_left, _, canvas_w, _ = state(page)["canvasRect"]
+    page.mouse.move(crash_x - 100, crash_y + 60)
+    page.mouse.down()
+    page.mouse.move(canvas_left + canvas_w - 130, crash_y + 60, steps=4)
+    page.mouse.up()
+    left, width = state(page)["collisionLabel"]
+    assert left >= 0 and left + width <= canvas_w
     page.screenshot(path=str(tmp_path / "replay-crash.png"))
     assert errors == []
 

@@ -208,7 +208,12 @@
     ctx.moveTo(x - r, y - r); ctx.lineTo(x + r, y + r); ctx.moveTo(x + r, y - r); ctx.lineTo(x - r, y + r); ctx.stroke();
     ctx.beginPath(); ctx.arc(x, y, r + 5, 0, 2 * Math.PI); ctx.lineWidth = 1.5; ctx.stroke();
     ctx.fillStyle = COLORS.crash; ctx.font = "bold 12px system-ui, sans-serif";
-    ctx.fillText("collision at t = " + c.t.toFixed(2) + " s", x + r + 8, y + 4);
+    var label = "collision at t = " + c.t.toFixed(2) + " s", lw = ctx.measureText(label).width;
+    // right of the mark, or left of it when that would run off the canvas (a crash into the east wall)
+    var lx = x + r + 8 + lw > st.W - 4 ? x - r - 8 - lw : x + r + 8;
+    st.crashLabel = [lx, lw];
+    ctx.fillStyle = "rgba(255,255,255,0.85)"; ctx.fillRect(lx - 3, y - 9, lw + 6, 17);  // readable over the trail
+    ctx.fillStyle = COLORS.crash; ctx.fillText(label, lx, y + 4);
     ctx.globalAlpha = 1;
   }
   function drawDebug(i, q, qe) {
@@ -510,7 +515,7 @@
       return { t: st.t, index: st.index, playing: st.playing, speed: st.speed, zoom: st.zoom,
                center: [st.cx, st.cy], following: st.following, tEnd: TEND, rows: N,
                robotScreenXY: [r.left + sx(q[0]), r.top + sy(q[1])],
-               canvasRect: [r.left, r.top, r.width, r.height] };
+               canvasRect: [r.left, r.top, r.width, r.height], collisionLabel: st.crashLabel || null };
     },
     play: function () { setPlaying(true); }, pause: function () { setPlaying(false); },
     seek: seek, stepBy: stepBy, home: function () { home(); render(); },
