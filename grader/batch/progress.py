@@ -75,7 +75,8 @@ class Progress:
                 self.width = len(text)
                 self.stream.flush()
                 self.last_shown = now
-        elif final or now - self.last_shown >= self.period_s:
+        elif final or (now - self.last_shown >= self.period_s and self.finished < self.total):
+            # the last student's line is left to close(), so a log does not end with the same line twice
             self.stream.write(self.line() + "\n")
             self.stream.flush()
             self.last_shown = now

@@ -106,6 +106,11 @@ def test_progress_line_counts_rate_eta_and_modes() -> None:
     clock.now = 41.0
     bar.done("timeout")
     assert len(stream.getvalue().splitlines()) == 2
+    last = Progress(1, stream=io.StringIO(), tty=False, period_s=10, clock=clock)
+    clock.now = 60.0
+    last.done("graded")
+    last.close()
+    assert last.stream.getvalue().count("[1/1]") == 1       # the end is shown once, not twice
     tty = io.StringIO()
     live = Progress(3, stream=tty, tty=True, clock=clock)
     live.done("crashed")
