@@ -240,7 +240,8 @@ class _Run:
             outcome = {"status": "crashed", "message": "the grader returned no usable result"}
         status = outcome.get("status") if outcome.get("status") in STATUSES else "crashed"
         return {"week": task["week"], "score": 0.0, "max_score": None, "status": status,
-                "seed": task["seed"], "grader_version": self.grader, "submission": task["display"],
+                "seed": task["seed"], "hidden": task["hidden"], "grader_version": self.grader,
+                "submission": task["display"],
                 "checks": [], "message": outcome.get("message") or status}, None
 
     def rebuild(self, executor: dict) -> dict:
@@ -248,7 +249,7 @@ class _Run:
         results = {}
         for student in self.students:
             stored = read_json(self.out / f"{self.stems[student.id]}.json")
-            if stored is not None:
+            if stored is not None and self._current(stored):
                 results[student.id] = stored
         stems = {sid: self.stems[sid] for sid in results}
         write_exports(self.out, results, stems)
@@ -272,6 +273,15 @@ class _Run:
         write_json(self.out / "batch.json", report)
         self._tell(report)
         return report
+
+    def _current(self, stored: dict) -> bool:
+        """True if a stored result was graded with this run's week, seed, grader and --hidden. An older
+        one (a rerun with another seed, stopped half-way) is left out of the class files and counted as
+        not graded yet, so the gradebook never mixes two gradings."""
+        batch = stored.get("batch") if isinstance(stored.get("batch"), dict) else {}
+        return (stored.get("week") == self.options.week and stored.get("seed") == self.options.seed
+                and batch.get("grader") == self.grader
+                and bool(stored.get("hidden", self.options.hidden)) == self.options.hidden)
 
     def _tell(self, report: dict) -> None:
         if self.options.quiet:

@@ -211,6 +211,32 @@ def test_killed_batch_keeps_what_was_graded_and_resumes(tmp_path: Path, how: int
     assert report["counts"]["graded"] == 5 and not report["interrupted"]
 
 
+class StopAfterOne:
+    """An executor stopped (Ctrl-C) right after its first student: the rest keep their older results."""
+
+    def describe(self) -> dict:
+        return {"executor": "stop-after-one"}
+
+    def run(self, grade_fn, tasks, on_done) -> None:
+        import batch_fake_grader
+
+        task = next(iter(tasks))
+        on_done(task, {"status": "ok", "value": batch_fake_grader.fake_grade(task), "seconds": 0.0})
+        raise KeyboardInterrupt
+
+
+def test_results_of_an_older_grading_stay_out_of_the_class_files(tmp_path: Path) -> None:
+    make_class(tmp_path / "class", {"a": "score 1", "b": "score 2", "c": "score 3"})
+    run_batch(options(tmp_path, seed=5), grade_fn=FAKE)
+    report = run_batch(options(tmp_path, seed=6), executor=StopAfterOne())   # a new seed, stopped at once
+    assert report["interrupted"] and report["incomplete"] == 2 and sum(report["counts"].values()) == 1
+    rows = list(csv.DictReader((tmp_path / "out" / "gradebook.csv").open()))
+    assert [r["student"] for r in rows] == ["a"]
+    assert "2 submissions not graded yet" in (tmp_path / "out" / "summary.html").read_text()
+    again = run_batch(options(tmp_path, seed=6), grade_fn=FAKE)                # the rerun finishes the job
+    assert again["incomplete"] == 0 and again["this_run"] == {"graded_now": 2, "skipped": 1}
+
+
 def test_a_second_batch_on_the_same_output_is_refused(tmp_path: Path) -> None:
     from grader.batch.store import exclusive
 
