@@ -188,7 +188,7 @@ class _Run:
     def plan(self) -> Iterator[dict]:
         """Tasks for the students that need grading, read one at a time as slots free up."""
         for student in self.students:
-            submission = read_submission(student)
+            submission = read_submission(student, week=self.options.week)
             key = cache_key(self.options.week, self.options.seed, self.options.hidden, submission.sha256,
                             self.grader)
             stem = self.stems[student.id]

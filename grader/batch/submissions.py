@@ -62,8 +62,9 @@ def discover(batch_dir: Path) -> list[Student]:
     return students
 
 
-def read_submission(student: Student, limits: Limits | None = None) -> Submission:
-    """Read and check one student's files; a refusal is recorded, never raised."""
+def read_submission(student: Student, limits: Limits | None = None, week: int | None = None) -> Submission:
+    """Read and check one student's files; a refusal is recorded, never raised. ``week`` (the batch's)
+    picks ``weekN/`` in a submission holding several weeks' folders."""
     limits = limits or Limits()
     try:
         if student.kind == "clash":
@@ -72,7 +73,7 @@ def read_submission(student: Student, limits: Limits | None = None) -> Submissio
             raise SubmissionRefused(f"{student.path.name} is a link; links are not followed "
                                     "(copy the submission into the class folder)")
         raw = read_zip(student.path, limits) if student.kind == "zip" else read_folder(student.path, limits)
-        root, files = find_root(raw)
+        root, files = find_root(raw, week)
         if not files:
             raise SubmissionRefused("the submission has no files")
     except SubmissionRefused as refused:
@@ -127,11 +128,13 @@ def _check_inside(link: Path, base: Path, folder: Path) -> None:
                                 f"links are not followed")
 
 
-def find_root(files: dict[str, bytes]) -> tuple[str, dict[str, bytes]]:
+def find_root(files: dict[str, bytes], week: int | None = None) -> tuple[str, dict[str, bytes]]:
     """The folder holding the student's files, and the files re-rooted there.
 
     A single top-level folder (``alice.zip`` containing ``week3/...``) is stepped into; failing that, the
-    shallowest folder with the most course files (``simiam/assignments/week3/``) is chosen.
+    shallowest folder with the most course files (``simiam/assignments/week3/``) is chosen, among the
+    folders named ``week<week>`` when there are any (a whole ``assignments/`` folder holds every week, and
+    week 4's folder has the most files).
     """
     root = ""
     while files and not any("/" not in p for p in files):
@@ -150,7 +153,8 @@ def find_root(files: dict[str, bytes]) -> tuple[str, dict[str, bytes]]:
             score[folder] = score.get(folder, 0) + 1
     if not score:
         return root.rstrip("/"), files
-    best = max(score, key=lambda f: (score[f], -f.count("/"), f))
+    named = [f for f in score if week is not None and f.rsplit("/", 1)[-1].lower() == f"week{week}"]
+    best = max(named or score, key=lambda f: (score[f], -f.count("/"), f))
     prefix = best + "/"
     return f"{root}{best}", {p[len(prefix):]: d for p, d in files.items() if p.startswith(prefix)}
 

@@ -211,6 +211,17 @@ def test_killed_batch_keeps_what_was_graded_and_resumes(tmp_path: Path, how: int
     assert report["counts"]["graded"] == 5 and not report["interrupted"]
 
 
+def test_a_zip_of_every_week_is_graded_from_the_batch_weeks_folder(tmp_path: Path) -> None:
+    (tmp_path / "class").mkdir()
+    make_zip(tmp_path / "class" / "ann.zip", {"assignments/week3/go_to_goal.py": "3", "assignments/week3/"
+                                              "answer.txt": "score 7", "assignments/week4/go_to_goal.py": "4",
+                                              "assignments/week4/avoid_obstacles.py": "4",
+                                              "assignments/week4/answer.txt": "score 1"})
+    run_batch(options(tmp_path), grade_fn=FAKE)
+    result = json.loads((tmp_path / "out" / "ann.json").read_text())
+    assert result["batch"]["root"] == "assignments/week3" and result["score"] == 7.0
+
+
 class StopAfterOne:
     """An executor stopped (Ctrl-C) right after its first student: the rest keep their older results."""
 

@@ -68,6 +68,13 @@ def test_nested_single_folder_and_whole_course_zip(tmp_path: Path) -> None:
                                              "simiam/assignments/week3/go_to_goal.py": "3"})
     sub = read_submission(Student("bob", course, "zip"))
     assert sub.root == "simiam/assignments/week3" and sub.files["quickbot.py"] == b"3"
+    # the whole assignments folder: week 4 has the most files, but a week-3 batch grades week3/
+    weeks = {f"assignments/week{n}/{name}": str(n) for n in (2, 3, 4)
+             for name in ("quickbot.py", "go_to_goal.py", "avoid_obstacles.py")[:n - 1]}
+    everything = make_zip(tmp_path / "carl.zip", weeks)
+    assert read_submission(Student("carl", everything, "zip")).root == "assignments/week4"   # no week given
+    sub = read_submission(Student("carl", everything, "zip"), week=3)
+    assert sub.root == "assignments/week3" and sub.files == {"quickbot.py": b"3", "go_to_goal.py": b"3"}
 
 
 def test_find_root_keeps_top_level_files() -> None:
