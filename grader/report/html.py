@@ -178,6 +178,10 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
         goal = trace.get("goal") or metrics.get("goal")
         if goal or trace.get("week") == 3:
             view["heading"] = svg.heading_svg(trace, goal=goal, settle_time=metrics.get("settle_time"))
+            view["heading_caption"] = "θ should enter the band and stay there"
+        elif isinstance(metrics.get("theta_d"), (int, float)) and math.isfinite(metrics["theta_d"]):
+            view["heading"] = svg.angle_svg(trace, metrics["theta_d"])
+            view["heading_caption"] = "θ should reach θ_d and stay there"
         if shared:
             view["shared"] = run_anchor(key)
             view["href"] = None

@@ -288,6 +288,19 @@ def heading_svg(trace: dict, goal: Sequence[float] | None = None, settle_time: f
                  bands=[(list(ts), lo, hi, "rgba(209,36,47,0.12)")], vlines=vlines).render()
 
 
+def angle_svg(trace: dict, theta_d: float) -> Markup:
+    """θ against a fixed target θ_d over time (week 2's go-to-angle runs): the TRUE heading, which the
+    grader judges, and the estimate's θ faintly."""
+    steps = trace.get("steps") or {}
+    ts = list(steps.get("t") or [])
+    theta = [_wrap(v) if _finite(v) else None for v in steps.get("theta") or []]
+    est = [_wrap(v) if _finite(v) else None for v in steps.get("theta_est") or []]
+    series = [Series("θ (true)", ts, theta, BLUE, wrap=True),
+              Series("θ_d", ts, [_wrap(theta_d)] * len(ts), RED, dash="6 4"),
+              Series("θ (estimate)", ts, est, GREY, width=1.0, wrap=True)]
+    return Chart(series, title="Heading θ against θ_d", x_label="t (s)").render()
+
+
 def histogram_svg(scores: Sequence[float], max_score: float, bins: int = 10, width: int = 520,
                   height: int = 200, title: str = "Scores") -> Markup:
     """Histogram of submission scores over [0, max_score] in `bins` equal bins (the top bin includes max)."""

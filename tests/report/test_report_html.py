@@ -203,3 +203,21 @@ def test_file_problems_notices_and_printed_output(week3_result):
     assert "changed outside the code blocks" in html and "bubblewrap sandbox" in html
     assert "4 visible checks ran here; 2 hidden checks" in html
     assert "hello from the student &lt;script&gt;" in html and "<script>window.pwned = 3" not in html
+
+
+def test_a_go_to_angle_run_plots_theta_against_theta_d(synthetic):
+    trace = synthetic.load("week3_goal.json")
+    trace.update(week=2, goal=None)
+    trace["steps"]["theta_g"] = [None] * len(trace["steps"]["t"])
+    result = {"week": 2, "score": 0.0, "max_score": 1.5, "status": "graded", "seed": 1, "checks": [
+        {"id": "week2.go_to_angle.reaches_theta_d", "name": "go-to-angle", "kind": "scenario", "points": 0.0,
+         "max_points": 1.5, "status": "failed", "message": "the true heading ended 2.92 rad away",
+         "details": {"runs": [{"theta_d": 0.785, "heading_error": 2.92}],
+                     "traces": ["week2.go_to_angle.reaches_theta_d"]}}]}
+    html = render_report(result, {"week2.go_to_angle.reaches_theta_d": trace}, replays="none")
+    titles = [el.findtext("{http://www.w3.org/2000/svg}title") for el in svg_elements(html)]
+    assert "Heading θ against θ_d" in titles and "θ should reach θ_d and stay there" in html
+    plot = html.split("Heading θ against θ_d", 1)[1].split("</svg>", 1)[0]
+    lines = re.findall(r'<path d="M([^"]+)"', plot)
+    assert len(lines) == 3                             # θ (true), θ_d, θ (estimate)
+    assert len({pt.split()[-1] for pt in lines[1].split(" L")}) == 1 and len(lines[0].split(" L")) > 10
