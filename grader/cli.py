@@ -126,7 +126,9 @@ def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
 
     folder = _folder(args, week, many)
     if not folder.is_dir():
-        print(f"grade: no such folder: {folder}", file=sys.stderr)
+        hint = "" if args.path or args.solutions else \
+            f" (run grade from the course folder, or name your folder: grade week{week} PATH)"
+        print(f"grade: no such folder: {folder}{hint}", file=sys.stderr)
         return 2
     case = parse_case(args.case) if args.case else None
     shown = "--solutions" if args.solutions else str(folder)

@@ -71,6 +71,13 @@ def test_result_records_version_hash_seed_and_isolation(tmp_path: Path) -> None:
     assert grade_main(["week2", str(tmp_path / "missing")]) == 2
 
 
+def test_no_folder_here_tells_the_student_what_to_do(tmp_path: Path, monkeypatch, capsys) -> None:
+    monkeypatch.chdir(tmp_path)
+    assert grade_main(["week3"]) == 2
+    err = capsys.readouterr().err
+    assert "run grade from the course folder, or name your folder: grade week3 PATH" in err
+
+
 def test_nan_and_exceptions_get_clear_messages(tmp_path: Path) -> None:
     folder = tmp_path / "week2"
     shutil.copytree(ROOT / "solutions" / "week2", folder)
