@@ -19,7 +19,7 @@ import sys
 import textwrap
 from pathlib import Path
 
-from grader.grading import DEFAULT_SEED, ROOT, grade_submission
+from grader.grading import DEFAULT_SEED, ROOT, CourseFilesMissing, grade_submission
 from grader.result import all_passed
 
 WEEKS = (1, 2, 3, 4)
@@ -171,7 +171,7 @@ def main(argv: list[str] | None = None) -> int:
             args.week_number = weeks[0]
             return batch_main(args)
         codes = [_grade_one(args, week, many=len(weeks) > 1) for week in weeks]
-    except ValueError as exc:
+    except (ValueError, CourseFilesMissing) as exc:
         print(f"grade: {exc}", file=sys.stderr)
         return 2
     except ImportError as exc:

@@ -28,6 +28,11 @@ DEFAULT_SEED = 2014
 ROOT = Path(__file__).resolve().parents[1]
 
 
+class CourseFilesMissing(RuntimeError):
+    """The grader cannot find the assignment stubs: it was installed without the course folder (a wheel,
+    or ``pip install .``), so it cannot splice anything. Not a student problem: grading stops."""
+
+
 def select_checks(week: int, hidden: bool, only: str | None = None) -> tuple[list[Check], list[Check]]:
     """(checks to run, hidden checks left out). `only` picks one check id (the CLI's --check)."""
     checks = checks_for_week(week)
@@ -62,6 +67,13 @@ def pristine_stubs(week: int, into: Path) -> Path:
         files = {
             p.name: p.read_text(encoding="utf-8") for p in (ROOT / "assignments" / f"week{week}").glob("*.py")
         }
+    if not files:
+        # Without stubs every file would be "not part of the assignment" and every submission would score
+        # 0: refuse loudly instead of grading.
+        raise CourseFilesMissing(
+            f"the assignment stubs for week {week} are not installed next to the grader "
+            f"({ROOT / 'assignments'} is missing): install the grader from the course checkout with "
+            "`pip install -e .`")
     for name, text in files.items():
         (folder / name).write_text(text, encoding="utf-8")
     return folder

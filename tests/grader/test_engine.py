@@ -114,3 +114,17 @@ def test_a_timeout_in_the_middle_of_a_property_search_is_reported_as_a_timeout()
     assert outcome.fraction == 0.0 and outcome.status == "timeout"
     assert outcome.message == ("your code did not answer in time: "
                                "no answer within 2 s, the time limit per call")
+
+
+def test_a_grader_installed_without_the_course_files_refuses_instead_of_scoring_zero(
+        tmp_path: Path, monkeypatch, capsys) -> None:
+    """A wheel (`pip install .`) has no assignments/: splicing into nothing would give every student 0."""
+    import pytest
+
+    from grader import grading
+
+    monkeypatch.setattr(grading, "ROOT", tmp_path / "site-packages")
+    with pytest.raises(grading.CourseFilesMissing, match="pip install -e"):
+        grade_submission(3, ROOT / "solutions" / "week3", seed=1)
+    assert grade_main(["week3", str(ROOT / "solutions" / "week3"), "--out", str(tmp_path / "r")]) == 2
+    assert "assignment stubs for week 3 are not installed" in capsys.readouterr().err
