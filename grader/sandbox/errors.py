@@ -34,7 +34,18 @@ class StudentError(SandboxError):
 
 
 class StudentTimeout(SandboxError):
-    """The call did not answer in time (infinite loop, sleep, or the submission's time budget ran out)."""
+    """The call did not answer in time (infinite loop, sleep, or the submission's time budget ran out).
+
+    `file`, `line` and `function` say where the student's code was still running when the call was stopped
+    (None when unknown: the code was in the grader's own code, or it silenced the stack dump).
+    """
+
+    def __init__(self, message: str, file: str | None = None, line: int | None = None,
+                 function: str | None = None) -> None:
+        super().__init__(message)
+        self.file = file
+        self.line = line
+        self.function = function
 
 
 class WorkerDied(SandboxError):

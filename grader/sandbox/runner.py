@@ -22,6 +22,10 @@ from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
 from grader.sandbox.output import CappedOutput
 from grader.sandbox.protocol import LineReader, ProtocolError, decode, encode
 
+DUMP_WAIT_SECONDS = 0.25   # how long a timed-out worker gets to write its stack dump before the kill
+DUMP_IDLE_SECONDS = 0.02
+MAX_DUMP_BYTES = 64 * 1024
+
 _SIGNAL_MEANING = {
     signal.SIGXCPU: "it used up its CPU time limit",
     signal.SIGXFSZ: "it wrote a file larger than the limit",
@@ -39,25 +43,33 @@ class WorkerProcess:
         req_r, self._req_w = os.pipe()
         self._resp_r, resp_w = os.pipe()
         out_r, out_w = os.pipe()
-        config = dict(plan.config, fd_in=req_r, fd_out=resp_w)
+        # The worker's stack dumps (faulthandler on SIGUSR1) come back on a third pipe, read only on timeout.
+        self._dump_r, dump_w = os.pipe()
+        os.set_blocking(self._dump_r, False)
+        config = dict(plan.config, fd_in=req_r, fd_out=resp_w, fd_dump=dump_w)
         argv = plan.argv[:-1] + [_json(config)]
         try:
             self.proc = subprocess.Popen(
                 argv, env=plan.env, cwd=plan.cwd, stdin=subprocess.DEVNULL, stdout=out_w, stderr=out_w,
-                pass_fds=(req_r, resp_w), start_new_session=True, close_fds=True)
+                pass_fds=(req_r, resp_w, dump_w), start_new_session=True, close_fds=True)
         finally:
-            for fd in (req_r, resp_w, out_w):
+            for fd in (req_r, resp_w, out_w, dump_w):
                 os.close(fd)
         self.output = CappedOutput(out_r, output_cap)
         self._reader = LineReader()
         self._next_id = 1
         self.started = time.monotonic()
         self.dead: str | None = None
+        self.ready: dict = {}        # the worker's first message, sent before any student code ran
+        self.stack_dump = b""        # what the worker dumped when its last call timed out (untrusted)
 
     # ---- messages ----------------------------------------------------------------------------------
     def wait_ready(self, timeout: float) -> dict:
         """The worker's first message (id 0) once its bootstrap is done."""
-        return self._receive(0, time.monotonic() + timeout, "start")
+        message = self._receive(0, time.monotonic() + timeout, "start")
+        value = message.get("value")
+        self.ready = value if isinstance(value, dict) else {}
+        return message
 
     def request(self, op: str, fields: dict, timeout: float) -> dict:
         """Send {"id", "op", **fields}; return the response dict (ok/value or ok/error)."""
@@ -94,6 +106,8 @@ class WorkerProcess:
                 return message
             left = deadline - time.monotonic()
             if left <= 0:
+                if op != "start":
+                    self.stack_dump = self._dump_stack()
                 self.kill()
                 what = "the worker did not start" if op == "start" else "no answer"
                 raise StudentTimeout(f"{what} within the time limit")
@@ -106,6 +120,30 @@ class WorkerProcess:
                 self._reader.feed(data)
             except ProtocolError as exc:
                 self._die(f"it broke the protocol ({exc})")
+
+    def _dump_stack(self) -> bytes:
+        """Ask the worker where it is (SIGUSR1 -> faulthandler) and collect the dump; b"" if none came.
+
+        Costs at most DUMP_WAIT_SECONDS, and only when a call has already timed out."""
+        _drain(self._dump_r)  # anything written before now is not this timeout's dump
+        pid = self._worker_pid()
+        if pid is None:
+            return b""
+        try:
+            os.kill(pid, signal.SIGUSR1)
+        except (ProcessLookupError, PermissionError):
+            return b""
+        return _collect(self._dump_r, DUMP_WAIT_SECONDS, DUMP_IDLE_SECONDS, MAX_DUMP_BYTES)
+
+    def _worker_pid(self) -> int | None:
+        """The worker's pid as seen here: the process itself (subprocess mode) or, under bubblewrap, the
+        descendant whose innermost namespace pid is the one the worker reported before student code ran."""
+        inner = self.ready.get("pid")
+        if type(inner) is not int or self.proc.poll() is not None:
+            return None
+        if self.plan.mode == SUBPROCESS:
+            return self.proc.pid
+        return find_descendant(self.proc.pid, inner)
 
     def _die(self, reason: str) -> None:
         self.kill()
@@ -143,12 +181,12 @@ class WorkerProcess:
             self.proc.wait(timeout=5.0)
         except subprocess.TimeoutExpired:
             pass
-        for fd in (self._req_w, self._resp_r):
+        for fd in (self._req_w, self._resp_r, self._dump_r):
             try:
                 os.close(fd)
             except OSError:
                 pass
-        self._req_w = self._resp_r = -1
+        self._req_w = self._resp_r = self._dump_r = -1
         self.output.join(1.0)
         if self.dead is None:
             self.dead = "it was stopped"
@@ -162,6 +200,72 @@ def _wait(fd: int, event: int, seconds: float) -> bool:
     poller = select.poll()
     poller.register(fd, event)
     return bool(poller.poll(max(0, int(seconds * 1000) + 1)))
+
+
+def _drain(fd: int, limit: int = 1 << 20) -> None:
+    """Discard what is waiting on non-blocking `fd` (bounded: a writer may never stop)."""
+    while limit > 0:
+        try:
+            data = os.read(fd, 1 << 16)
+        except (BlockingIOError, OSError):
+            return
+        if not data:
+            return
+        limit -= len(data)
+
+
+def _collect(fd: int, first_wait: float, idle: float, cap: int) -> bytes:
+    """Read non-blocking `fd` until `cap` bytes, or nothing for `idle` s after the first bytes (which may
+    take up to `first_wait` s). faulthandler writes its dump in one burst from the signal handler."""
+    chunks: list[bytes] = []
+    size = 0
+    deadline = time.monotonic() + first_wait
+    while size < cap:
+        wait = deadline - time.monotonic() if not chunks else idle
+        if wait <= 0 or not _wait(fd, select.POLLIN, wait):
+            break
+        try:
+            data = os.read(fd, cap - size)
+        except (BlockingIOError, OSError):
+            break
+        if not data:
+            break
+        chunks.append(data)
+        size += len(data)
+    return b"".join(chunks)
+
+
+def find_descendant(root: int, inner_pid: int) -> int | None:
+    """The pid (here) of a descendant of `root` whose pid in its own PID namespace is `inner_pid`."""
+    parents: dict[int, int] = {}
+    for entry in os.scandir("/proc"):
+        if entry.name.isdigit():
+            try:
+                with open(f"/proc/{entry.name}/stat", "rb") as stat:
+                    parents[int(entry.name)] = int(stat.read().rsplit(b")", 1)[1].split()[1])
+            except (OSError, IndexError, ValueError):
+                pass
+    children: dict[int, list[int]] = {}
+    for pid, parent in parents.items():
+        children.setdefault(parent, []).append(pid)
+    todo = list(children.get(root, []))
+    while todo:
+        pid = todo.pop(0)
+        if _innermost_pid(pid) == inner_pid:
+            return pid
+        todo.extend(children.get(pid, []))
+    return None
+
+
+def _innermost_pid(pid: int) -> int | None:
+    try:
+        with open(f"/proc/{pid}/status") as status:
+            for line in status:
+                if line.startswith("NSpid:"):
+                    return int(line.split()[-1])
+    except (OSError, ValueError, IndexError):
+        pass
+    return None
 
 
 def kill_uid(uid: int, rounds: int = 20) -> None:

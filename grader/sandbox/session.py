@@ -24,6 +24,7 @@ from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeo
 from grader.sandbox.limits import Limits
 from grader.sandbox.protocol import to_json
 from grader.sandbox.runner import WorkerProcess
+from grader.sandbox.stuck import Stuck, find_stuck
 from grader.sandbox.workdir import WorkCopy
 
 _KEEP_OUTPUTS = 8  # output of the last workers of a session shown in feedback
@@ -139,14 +140,24 @@ class StudentSession:
             response = self._worker.request(op, to_json(fields), limit)
         except StudentTimeout:
             if limit < (timeout or self.limits.call_seconds):
-                raise StudentTimeout("the submission used up its total time of "
-                                     f"{self.limits.total_seconds:g} s") from None
-            raise StudentTimeout(f"no answer within {limit:g} s, the time limit per call") from None
+                why = f"the submission used up its total time of {self.limits.total_seconds:g} s"
+            else:
+                why = f"no answer within {limit:g} s, the time limit per call"
+            raise _timeout(why, self._stuck_at()) from None
         finally:
             self.seconds_used += time.monotonic() - began
         if response["ok"]:
             return response.get("value")
         raise _student_error(response.get("error"))
+
+    def _stuck_at(self) -> Stuck | None:
+        """Where the student's code was when the last call timed out (from the worker's stack dump)."""
+        worker = self._worker
+        if worker is None or not worker.stack_dump:
+            return None
+        thread = worker.ready.get("thread")
+        return find_stuck(worker.stack_dump, str(worker.plan.config.get("submission", "")),
+                          self.spliced_dir, thread if type(thread) is int else None)
 
     def _budget_left(self) -> float:
         left = self.limits.total_seconds - self.seconds_used
@@ -183,6 +194,14 @@ def _choose(sandbox: str) -> str:
     if sandbox == isolation.BWRAP:
         raise SandboxUnavailable(why)
     return isolation.SUBPROCESS
+
+
+def _timeout(why: str, stuck: Stuck | None) -> StudentTimeout:
+    """StudentTimeout saying, when known, where the student's code was still running."""
+    if stuck is None:
+        return StudentTimeout(why)
+    message = f"{why}; your code was still running at {stuck} (an endless loop, or a wait that never ends?)"
+    return StudentTimeout(message, stuck.file, stuck.line, stuck.function)
 
 
 def _student_error(error: Any) -> StudentError:

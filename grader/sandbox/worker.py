@@ -33,7 +33,7 @@ def _drop_privileges(uid: int, gid: int) -> None:
 
 
 # The trusted modules every worker needs, imported before the privilege drop and before student code.
-_PRELOAD = ("math", "numpy", "simiam.control", "simiam.course.weeks", "simiam.course.loader",
+_PRELOAD = ("math", "faulthandler", "numpy", "simiam.control", "simiam.course.weeks", "simiam.course.loader",
             "grader.sandbox.limits", "grader.sandbox.seccomp", "grader.sandbox.worker_loop", "ctypes")
 # Standard-library modules a student may import, preloaded only when the dedicated uid cannot read the
 # Python environment (subprocess mode, interpreter under a private home directory).

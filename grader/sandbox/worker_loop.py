@@ -7,10 +7,13 @@ answers convenient (JSON conversion, file and line of an exception). The grader 
 
 from __future__ import annotations
 
+import faulthandler
 import importlib
 import inspect
 import os
+import signal
 import sys
+import threading
 import traceback
 from pathlib import Path
 from typing import Any
@@ -107,10 +110,19 @@ def _probe_names(module: Any) -> frozenset[str]:
 
 
 def serve(config: dict) -> None:
-    """Announce readiness, then answer requests until the grader closes the pipe."""
+    """Announce readiness, then answer requests until the grader closes the pipe.
+
+    Before any student code runs, SIGUSR1 is set to make faulthandler dump every thread's stack on the
+    grader's dump pipe: the grader sends it when a call times out, to say where the code was stuck. The
+    readiness message carries this process's pid and serving thread, which the grader uses to find and read
+    that dump (it is sent before student code, so the student cannot forge it).
+    """
     fd_in, fd_out = int(config["fd_in"]), int(config["fd_out"])
+    if config.get("fd_dump") is not None:
+        faulthandler.register(signal.SIGUSR1, file=int(config["fd_dump"]), all_threads=True)
     worker = _Worker(config)
     _send(fd_out, {"id": 0, "ok": True, "value": {"pid": os.getpid(), "uid": os.getuid(),
+                                                  "thread": threading.get_ident(),
                                                   "seccomp": bool(config.get("seccomp"))}})
     reader = LineReader()
     while True:
