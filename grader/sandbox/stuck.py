@@ -85,7 +85,7 @@ def _student_frame(path: str, line: int, function: str, folder: str, source_fold
         text = source.read_text(encoding="utf-8", errors="replace")
     except OSError:
         return None
-    if not 1 <= line <= text.count("\n") + 1:
+    if not 1 <= line <= text.count("\n") + (not text.endswith("\n")):
         return None
     return Stuck(name, line, qualified_name(text, line, function))
 

@@ -20,3 +20,14 @@ def to_json(value, depth=0):
     if hasattr(value, "__float__"):
         return float(value)
     return value
+
+
+def find_stuck(dump: bytes, folder: str):
+    """A loose reading of a faulthandler dump: any `File "...", line N in F` under the folder, unchecked
+    (trusts the file name, the line number and the function name the untrusted dump gives)."""
+    import re
+
+    for m in re.finditer(r'File "([^"]*)", line (\d+) in (.*)', dump.decode(errors="replace")):
+        if m.group(1).startswith(folder):
+            return m.group(1)[len(folder):].lstrip("/"), int(m.group(2)), m.group(3)
+    return None
