@@ -200,7 +200,7 @@ def _timeout(why: str, stuck: Stuck | None) -> StudentTimeout:
     """StudentTimeout saying, when known, where the student's code was still running."""
     if stuck is None:
         return StudentTimeout(why)
-    message = f"{why}; your code was still running at {stuck} (an endless loop, or a wait that never ends?)"
+    message = f"{why}; it was still running at {stuck} (an endless loop or a long wait?)"
     return StudentTimeout(message, stuck.file, stuck.line, stuck.function)
 
 
