@@ -215,13 +215,15 @@ def _drain(fd: int, limit: int = 1 << 20) -> None:
 
 
 def _collect(fd: int, first_wait: float, idle: float, cap: int) -> bytes:
-    """Read non-blocking `fd` until `cap` bytes, or nothing for `idle` s after the first bytes (which may
-    take up to `first_wait` s). faulthandler writes its dump in one burst from the signal handler."""
+    """Read non-blocking `fd` until `cap` bytes, nothing for `idle` s after the first bytes, or 2 x
+    `first_wait` in all (a writer trickling bytes cannot hold the grader). faulthandler writes its dump
+    in one burst from the signal handler."""
     chunks: list[bytes] = []
     size = 0
-    deadline = time.monotonic() + first_wait
+    began = time.monotonic()
     while size < cap:
-        wait = deadline - time.monotonic() if not chunks else idle
+        left = began + (2 if chunks else 1) * first_wait - time.monotonic()
+        wait = min(left, idle) if chunks else left
         if wait <= 0 or not _wait(fd, select.POLLIN, wait):
             break
         try:

@@ -2,6 +2,7 @@
 import gc
 import os
 import threading
+import time
 
 
 def uni_to_diff(robot, v, w):
@@ -55,6 +56,16 @@ def _flood(fd):
             return
 
 
+def _trickle(fd):
+    """One byte at a time, just often enough that the pipe never looks idle."""
+    while True:
+        try:
+            os.write(fd, b"x")
+        except OSError:
+            return
+        time.sleep(0.005)
+
+
 def attack(how="once", **args):
     fd = _dump_fd()
     if how == "once":
@@ -64,5 +75,6 @@ def attack(how="once", **args):
         except BlockingIOError:
             pass
     else:
-        threading.Thread(target=_flood, args=(fd,), daemon=True).start()
+        writer = _trickle if how == "trickle" else _flood
+        threading.Thread(target=writer, args=(fd,), daemon=True).start()
     while True: pass  # noqa: E701 - STUCK: forge
