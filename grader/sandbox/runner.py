@@ -2,9 +2,14 @@
 
 The grader talks to the worker over two pipes passed as extra file descriptors (never stdin/stdout/stderr).
 Every response must carry the id of the pending request, fit the size cap and parse as strict JSON; anything
-else is a protocol violation and the worker is killed. Killing covers the whole tree: the bubblewrap PID
-namespace dies with its init; in any mode a dedicated uid is swept with kill(-1) from a child that has
-become that uid, which reaches processes that called setsid or double-forked.
+else is a protocol violation and the worker is killed. A third pipe carries only stack dumps: when a call
+times out, the runner sends SIGUSR1 (the worker registered faulthandler for it before any student code ran),
+keeps what arrives within a bounded wait in `stack_dump` (untrusted bytes for grader.sandbox.stuck), then
+kills. This costs nothing per call; a timeout costs about 20 ms more (at most 0.5 s if the dump never comes).
+
+Killing covers the whole tree: the bubblewrap PID namespace dies with its init; in any mode a dedicated uid is
+swept with kill(-1) from a child that has become that uid, which reaches processes that called setsid or
+double-forked.
 """
 
 from __future__ import annotations

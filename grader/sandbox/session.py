@@ -8,7 +8,9 @@
 The worker reads a private copy of `spliced_dir` (grader.sandbox.workdir), never the folder itself.
 `call` returns the worker's JSON value (untrusted: check it with grader.sandbox.validate) or raises
 StudentError (the student's code raised; file and line inside the submission), StudentTimeout (per call, or
-the submission's total budget is spent), WorkerDied (exit, kill, limits, protocol abuse). After a kill the
+the submission's total budget is spent; with `file`, `line` and `function` of the student's code that was
+still running, read from the worker's stack dump by grader.sandbox.stuck, when it can be known), WorkerDied
+(exit, kill, limits, protocol abuse). After a kill the
 next call starts a fresh worker, unless importing the submission is what killed it: then every call raises
 that same WorkerDied without starting again.
 """

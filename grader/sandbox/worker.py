@@ -6,6 +6,7 @@ drops to the dedicated uid (when started as root), applies the rlimits and a sec
 network sockets, sets sys.path to the interpreter's
 standard library plus the paths the grader names, imports the trusted modules, then answers requests on the
 private pipe pair. Student output goes to fds 1 and 2, which the grader captures separately with a cap.
+A third private pipe receives faulthandler's stack dump when the grader signals a timed-out call (SIGUSR1).
 
 Ops: "ping"; "load" -> {"modules", "errors"}; "probe" (a function of the probes module, by allow-listed
 name, called as fn(submission, **args)); "brain_start" (settings); "brain_step" (readings) -> command.
