@@ -17,6 +17,7 @@ that same WorkerDied without starting again.
 
 from __future__ import annotations
 
+import os
 import time
 from pathlib import Path
 from typing import Any
@@ -158,8 +159,11 @@ class StudentSession:
         if worker is None or not worker.stack_dump:
             return None
         thread = worker.ready.get("thread")
-        return find_stuck(worker.stack_dump, str(worker.plan.config.get("submission", "")),
-                          self.spliced_dir, thread if type(thread) is int else None)
+        folder = str(worker.plan.config.get("submission", ""))
+        if worker.plan.mode == isolation.SUBPROCESS:  # the loader resolves it: same view of the files here
+            folder = os.path.realpath(folder)
+        main_thread = thread if type(thread) is int else None
+        return find_stuck(worker.stack_dump, folder, self.spliced_dir, main_thread)
 
     def _budget_left(self) -> float:
         left = self.limits.total_seconds - self.seconds_used
