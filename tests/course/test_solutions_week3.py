@@ -13,6 +13,7 @@ import math
 import shutil
 from pathlib import Path
 
+import mistakes
 import pytest
 
 from simiam.control import Inputs, Pose2D
@@ -119,7 +120,5 @@ def test_heading_error_is_wrapped():
 
 
 def test_unwrapped_heading_error_is_caught(tmp_path):
-    folder = tmp_path / "no_wrap"
-    shutil.copytree(ROOT / "solutions/week3", folder)
-    shutil.copy(ROOT / "tests/data/wrong/week3_no_wrap/go_to_goal.py", folder)
+    folder = mistakes.build("wrong", "week3_no_wrap", tmp_path, 3)
     assert heading_error_across_pi(folder) == pytest.approx(-6.0, abs=1e-12)

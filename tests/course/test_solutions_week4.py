@@ -7,6 +7,7 @@ import math
 import shutil
 from pathlib import Path
 
+import mistakes
 import pytest
 
 from simiam.control import Pose2D, RobotView
@@ -109,9 +110,7 @@ def test_sensor_gains_are_symmetric():
 
 
 def test_asymmetric_gains_are_caught(tmp_path):
-    folder = tmp_path / "asymmetric"
-    shutil.copytree(ROOT / "solutions/week4", folder)
-    shutil.copy(ROOT / "tests/data/wrong/week4_asymmetric_gains/avoid_obstacles.py", folder)
+    folder = mistakes.build("wrong", "week4_asymmetric_gains", tmp_path, 4)
     g = sensor_gains(folder)
     assert g[1] != pytest.approx(g[3], rel=1e-9), g
 

@@ -4,9 +4,9 @@ the check's message, the terminal table and the HTML report."""
 from __future__ import annotations
 
 import io
-import shutil
 from pathlib import Path
 
+import mistakes
 import pytest
 
 from grader.cli import print_result
@@ -14,28 +14,22 @@ from grader.grading import grade_submission
 from grader.sandbox.isolation import BWRAP, SUBPROCESS, bwrap_works
 from grader.sandbox.limits import Limits
 
-ROOT = Path(__file__).resolve().parents[2]
-STUCK = ROOT / "tests" / "data" / "stuck"
 FAST = Limits(call_seconds=0.5, total_seconds=20.0)
 
 
 def build(name: str, week: int, into: Path) -> Path:
-    """solutions/weekN with the files of tests/data/stuck/<name> laid over it."""
-    folder = into / f"week{week}"
-    shutil.copytree(ROOT / "solutions" / f"week{week}", folder, ignore=shutil.ignore_patterns("__pycache__"))
-    for path in (STUCK / name).glob("*.py"):
-        shutil.copy(path, folder / path.name)
-    return folder
+    """solutions/weekN with tests/data/stuck/<name>.patch applied."""
+    return mistakes.build("stuck", name, into, week, folder_name=f"week{week}")
 
 
-def stuck_line(name: str, file: str) -> int:
-    lines = (STUCK / name / file).read_text().splitlines()
+def stuck_line(folder: Path, file: str) -> int:
+    lines = (folder / file).read_text().splitlines()
     return next(i for i, text in enumerate(lines, 1) if "# STUCK" in text)
 
 
 def test_a_loop_in_go_to_goal_execute_is_named_in_the_message_table_and_report(tmp_path: Path) -> None:
     folder = build("week3_endless_loop", 3, tmp_path)
-    where = f"go_to_goal.py:{stuck_line('week3_endless_loop', 'go_to_goal.py')} in GoToGoal.execute"
+    where = f"go_to_goal.py:{stuck_line(folder, 'go_to_goal.py')} in GoToGoal.execute"
     result = grade_submission(3, folder, seed=1, only="week3.go_to_goal.reach_goals", limits=FAST,
                               out_dir=tmp_path / "out")
     check = result["checks"][0]
@@ -53,7 +47,7 @@ def test_a_loop_in_go_to_goal_execute_is_named_in_the_message_table_and_report(t
     pytest.param(BWRAP, marks=pytest.mark.skipif(not bwrap_works()[0], reason=bwrap_works()[1])), SUBPROCESS])
 def test_a_loop_in_uni_to_diff_is_named_in_the_property_message(tmp_path: Path, mode: str) -> None:
     folder = build("week2_endless_loop", 2, tmp_path)
-    line = stuck_line("week2_endless_loop", "differential_drive.py")
+    line = stuck_line(folder, "differential_drive.py")
     result = grade_submission(2, folder, seed=1, only="week2.uni_to_diff.straight", limits=FAST, sandbox=mode)
     check = result["checks"][0]
     print(check["message"])

@@ -1,12 +1,12 @@
-"""Build a submission folder from a solution week plus the few files of a wrong (or alternative) version."""
+"""Build a submission folder from a solution week plus the mistake of a wrong (or alternative) version."""
 
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-WRONG = ROOT / "tests" / "data" / "wrong"
+import mistakes
+
+ROOT = mistakes.ROOT
 
 
 def week_of(name: str) -> int:
@@ -15,10 +15,5 @@ def week_of(name: str) -> int:
 
 
 def build(name: str, into: Path) -> Path:
-    """solutions/weekN with the files of tests/data/wrong/<name> laid over it."""
-    folder = into / name
-    shutil.copytree(ROOT / "solutions" / f"week{week_of(name)}", folder,
-                    ignore=shutil.ignore_patterns("__pycache__"))
-    for path in (WRONG / name).glob("*.py"):
-        shutil.copy(path, folder / path.name)
-    return folder
+    """solutions/weekN with tests/data/wrong/<name>.patch applied."""
+    return mistakes.build("wrong", name, into, week_of(name))
