@@ -6,12 +6,12 @@ import shutil
 import sys
 from pathlib import Path
 
+import mistakes
 import pytest
 
 from simiam.course.loader import LoadError, load_submission
 
 ROOT = Path(__file__).resolve().parents[2]
-FIXTURES = ROOT / "tests/data/submissions"
 
 
 def _line_of(path: Path, text: str) -> int:
@@ -20,11 +20,11 @@ def _line_of(path: Path, text: str) -> int:
 
 
 def _copy(tmp_path: Path, week: int, fixture: str | None = None) -> Path:
+    """solutions/weekN, with tests/data/submissions/<fixture> (a .patch or hand-written files) if given."""
+    if fixture:
+        return mistakes.build("submissions", fixture, tmp_path, week, folder_name=f"week{week}")
     folder = tmp_path / f"week{week}"
     shutil.copytree(ROOT / f"solutions/week{week}", folder)
-    if fixture:
-        for f in (FIXTURES / fixture).glob("*.py"):
-            shutil.copy(f, folder / f.name)
     return folder
 
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import argparse
 import json
-import shutil
 from pathlib import Path
 
+import mistakes
 import pytest
 
 from simiam.run import main
@@ -21,11 +21,7 @@ def _args(week: str, out: Path, path: str | None = None, solutions: bool = False
 
 
 def _folder(tmp_path: Path, week: int, mutant: str) -> Path:
-    folder = tmp_path / mutant
-    shutil.copytree(ROOT / f"solutions/week{week}", folder)
-    for f in (ROOT / "tests/data/submissions" / mutant).glob("*.py"):
-        shutil.copy(f, folder / f.name)
-    return folder
+    return mistakes.build("submissions", mutant, tmp_path, week)
 
 
 def test_solutions_run_writes_trace_replay_and_summary(tmp_path, capsys):

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
+
+import mistakes
 
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
@@ -18,11 +19,7 @@ WEEK = week_config(1)
 def _folder(tmp_path: Path, mutant: str | None) -> Path:
     if mutant is None:
         return ROOT / "solutions/week1"
-    folder = tmp_path / mutant
-    shutil.copytree(ROOT / "solutions/week1", folder)
-    for f in (ROOT / "tests/data/submissions" / mutant).glob("*.py"):
-        shutil.copy(f, folder / f.name)
-    return folder
+    return mistakes.build("submissions", mutant, tmp_path, 1)
 
 
 def moved(folder: Path) -> float:

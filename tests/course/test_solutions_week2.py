@@ -7,9 +7,9 @@ reads the manual's table back within 3%. Wrong versions in tests/data/submission
 from __future__ import annotations
 
 import math
-import shutil
 from pathlib import Path
 
+import mistakes
 import pytest
 
 from simiam.control import RobotView
@@ -28,11 +28,7 @@ TABLE_D = [0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.10, 0.12, 0.14, 0.16, 0.18, 0.2
 def _folder(tmp_path: Path, mutant: str | None) -> Path:
     if mutant is None:
         return ROOT / "solutions/week2"
-    folder = tmp_path / mutant
-    shutil.copytree(ROOT / "solutions/week2", folder)
-    for f in (ROOT / "tests/data/submissions" / mutant).glob("*.py"):
-        shutil.copy(f, folder / f.name)
-    return folder
+    return mistakes.build("submissions", mutant, tmp_path, 2)
 
 
 def _wrap(a: float) -> float:

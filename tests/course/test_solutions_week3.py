@@ -10,7 +10,6 @@ Wrong versions in tests/data/submissions/ must fail.
 from __future__ import annotations
 
 import math
-import shutil
 from pathlib import Path
 
 import mistakes
@@ -31,11 +30,7 @@ GOALS = [(0.0, -1.0), (-1.0, 1.0)]  # the manual's example and the week's defaul
 def _folder(tmp_path: Path, mutant: str | None) -> Path:
     if mutant is None:
         return ROOT / "solutions/week3"
-    folder = tmp_path / mutant
-    shutil.copytree(ROOT / "solutions/week3", folder)
-    for f in (ROOT / "tests/data/submissions" / mutant).glob("*.py"):
-        shutil.copy(f, folder / f.name)
-    return folder
+    return mistakes.build("submissions", mutant, tmp_path, 3)
 
 
 def _run(folder: Path, goal, dt: float, seconds: float):

@@ -4,7 +4,6 @@ and its sensor geometry reproduces the course's part-4.1 check. Wrong versions m
 from __future__ import annotations
 
 import math
-import shutil
 from pathlib import Path
 
 import mistakes
@@ -24,11 +23,7 @@ WEEK = week_config(4)
 def _folder(tmp_path: Path, mutant: str | None) -> Path:
     if mutant is None:
         return ROOT / "solutions/week4"
-    folder = tmp_path / mutant
-    shutil.copytree(ROOT / "solutions/week4", folder)
-    for f in (ROOT / "tests/data/submissions" / mutant).glob("*.py"):
-        shutil.copy(f, folder / f.name)
-    return folder
+    return mistakes.build("submissions", mutant, tmp_path, 4)
 
 
 def wander(folder: Path, dt: float) -> dict:

@@ -13,10 +13,10 @@ from __future__ import annotations
 
 import csv
 import math
-import shutil
 from collections import defaultdict
 from pathlib import Path
 
+import mistakes
 import pytest
 
 from simiam.control.local_brain import LocalBrain
@@ -28,7 +28,6 @@ from simiam.world import load_world
 
 ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = ROOT / "tests/data/golden"
-MUTANTS = ROOT / "tests/data/submissions"
 TOL = 1e-6
 
 # file -> (week of the code and robot, GoToGoal gains)
@@ -90,9 +89,7 @@ def test_every_file_has_cases():
 
 def test_odometry_after_control_in_week4_is_caught(tmp_path):
     """The week-3 order (odometry last) in the week-4 supervisor does not reproduce the sp14 run."""
-    folder = tmp_path / "mutant"
-    shutil.copytree(ROOT / "solutions/week4", folder)
-    shutil.copy(MUTANTS / "week4_odometry_last/qb_supervisor.py", folder / "qb_supervisor.py")
+    folder = mistakes.build("submissions", "week4_odometry_last", tmp_path, 4)
     name, goal_id = CASES[0]
     assert replay(folder, name, goal_id)
 
@@ -137,9 +134,7 @@ def test_solutions_agree_with_the_reference_brain_on_every_recorded_goal(name, g
 
 def test_reference_cross_check_catches_a_reordered_diff_to_uni(tmp_path):
     """R*(r-l)/L instead of R/L*(r-l): one ulp in ensure_w's round trip, a different dead-zone decision."""
-    folder = tmp_path / "mutant"
-    shutil.copytree(ROOT / "solutions/week4", folder)
-    shutil.copy(MUTANTS / "week4_diff_to_uni_reordered/differential_drive.py", folder)
+    folder = mistakes.build("submissions", "week4_diff_to_uni_reordered", tmp_path, 4)
     goals = [(1.0, 1.0), (-1.0, 1.0), (0.0, -1.0)]
     assert any(disagreement(folder, "gotogoal_closed_loop.csv", g) for g in goals)
 

@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import csv
 import dataclasses
-import shutil
 from collections import defaultdict
 from pathlib import Path
 
+import mistakes
 import pytest
 
 from simiam.control import Pose2D, RobotView
@@ -23,7 +23,6 @@ from simiam.robot.quickbot import limit_speeds, spec_for_week
 
 ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = ROOT / "tests/data/golden/ensure_w.csv"
-MUTANTS = ROOT / "tests/data/submissions"
 WEEK_OF_VERSION = {"week3": 3, "week3_maxrpm130": 3, "week4": 4}
 TOL = 1e-12
 
@@ -40,14 +39,10 @@ ROWS = _rows_by_version()
 
 
 def _folder(tmp_path: Path, week: int, mutant: str | None) -> Path:
-    """solutions/weekN, or a copy of it with the files of tests/data/submissions/<mutant> dropped in."""
+    """solutions/weekN, or a copy of it with tests/data/submissions/<mutant>.patch applied."""
     if mutant is None:
         return ROOT / f"solutions/week{week}"
-    folder = tmp_path / mutant
-    shutil.copytree(ROOT / f"solutions/week{week}", folder)
-    for f in (MUTANTS / mutant).glob("*.py"):
-        shutil.copy(f, folder / f.name)
-    return folder
+    return mistakes.build("submissions", mutant, tmp_path, week)
 
 
 def mismatches(folder: Path, version: str) -> list[str]:

@@ -8,9 +8,9 @@ wrong versions in tests/data/submissions/ must not.
 from __future__ import annotations
 
 import csv
-import shutil
 from pathlib import Path
 
+import mistakes
 import pytest
 
 from simiam.control import Pose2D, RobotView
@@ -19,7 +19,6 @@ from simiam.robot.quickbot import spec_for_week
 
 ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = ROOT / "tests/data/golden/odometry.csv"
-MUTANTS = ROOT / "tests/data/submissions"
 TOL = 1e-12
 
 with GOLDEN.open() as _f:
@@ -29,11 +28,7 @@ with GOLDEN.open() as _f:
 def _folder(tmp_path: Path, week: int, mutant: str | None) -> Path:
     if mutant is None:
         return ROOT / f"solutions/week{week}"
-    folder = tmp_path / mutant
-    shutil.copytree(ROOT / f"solutions/week{week}", folder)
-    for f in (MUTANTS / mutant).glob("*.py"):
-        shutil.copy(f, folder / f.name)
-    return folder
+    return mistakes.build("submissions", mutant, tmp_path, week)
 
 
 def worst_error(folder: Path, week: int) -> tuple[float, int]:

@@ -6,9 +6,9 @@ Every row to 1e-12, for each week that ships the module filled in (2, 3, 4); wro
 from __future__ import annotations
 
 import csv
-import shutil
 from pathlib import Path
 
+import mistakes
 import pytest
 
 from simiam.control import RobotView
@@ -17,7 +17,6 @@ from simiam.robot.quickbot import spec_for_week
 
 ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = ROOT / "tests/data/golden"
-MUTANTS = ROOT / "tests/data/submissions"
 TOL = 1e-12
 
 
@@ -29,11 +28,7 @@ def _rows(name: str) -> list[dict]:
 def _folder(tmp_path: Path, week: int, mutant: str | None) -> Path:
     if mutant is None:
         return ROOT / f"solutions/week{week}"
-    folder = tmp_path / mutant
-    shutil.copytree(ROOT / f"solutions/week{week}", folder)
-    for f in (MUTANTS / mutant).glob("*.py"):
-        shutil.copy(f, folder / f.name)
-    return folder
+    return mistakes.build("submissions", mutant, tmp_path, week)
 
 
 def worst_errors(folder: Path, week: int) -> tuple[float, float]:
