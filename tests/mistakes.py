@@ -1,6 +1,6 @@
 """Wrong versions kept as mistakes: a unified diff against solutions/weekN, applied to a fresh copy per test.
 
-`tests/data/<kind>/<name>.patch` (kind: `wrong`, `submissions`, `stuck`) starts with one `# ...` line saying
+`tests/data/<kind>/<name>.patch` (a kind of KINDS below) starts with one `# ...` line saying
 what the mistake is, then a unified diff whose paths name the solution file it changes
 (`--- a/solutions/week3/go_to_goal.py`). The applier is strict: every hunk's old lines must stand in the
 file exactly (at the stated line, or else at exactly one other place), or `MistakeError` says which file and
@@ -18,6 +18,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "tests" / "data"
 _HUNK = re.compile(r"@@ -(\d+)(?:,(\d+))? \+(\d+)(?:,(\d+))? @@")
+KINDS = ("wrong", "submissions", "stuck", "attacks/graded")
 _PATH = re.compile(r"[ab]/solutions/week(\d)/([\w.]+)$")
 
 
@@ -152,5 +153,4 @@ def build(kind: str, name: str, into: Path, week: int | None = None, folder_name
 
 def all_mistakes() -> list[tuple[str, str]]:
     """(kind, name) of every `.patch` mistake under tests/data/."""
-    return sorted((p.parent.name, p.stem) for kind in ("wrong", "submissions", "stuck")
-                  for p in (DATA / kind).glob("*.patch"))
+    return sorted((kind, p.stem) for kind in KINDS for p in (DATA / kind).glob("*.patch"))

@@ -8,12 +8,12 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import socket
 import threading
 import time
 from pathlib import Path
 
+import mistakes
 import pytest
 
 from grader.grading import grade_submission
@@ -22,7 +22,6 @@ from grader.sandbox.limits import Limits
 from grader.sandbox.session import _choose
 
 REPO = Path(__file__).resolve().parents[2]
-GRADED = REPO / "tests" / "data" / "attacks" / "graded"
 CHECK = "week2.uni_to_diff.round_trip"
 LIMITS = Limits(call_seconds=1.0, total_seconds=20.0)
 SANDBOXED = _choose("auto") == BWRAP
@@ -30,14 +29,13 @@ only_bwrap = pytest.mark.skipif(not SANDBOXED, reason="holds only inside bubblew
 
 
 def graded_attack(base: Path, name: str, **fill: object) -> Path:
-    """solutions/week2 with the attack's files laid over it; __KEY__ placeholders filled in."""
-    folder = base / name
-    shutil.copytree(REPO / "solutions" / "week2", folder)
-    for file in (GRADED / name).glob("*.py"):
-        text = file.read_text()
+    """solutions/week2 with tests/data/attacks/graded/<name>.patch applied; __KEY__ placeholders filled in."""
+    folder = mistakes.build("attacks/graded", name, base, 2)
+    for file in mistakes.read_mistake(mistakes.mistake_path("attacks/graded", name)).files:
+        text = (folder / file).read_text()
         for key, value in fill.items():
             text = text.replace(f"__{key.upper()}__", str(value))
-        (folder / file.name).write_text(text)
+        (folder / file).write_text(text)
     return folder
 
 
