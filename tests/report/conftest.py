@@ -3,28 +3,16 @@ module."""
 
 from __future__ import annotations
 
-import importlib.util
-import shutil
-import tempfile
-from pathlib import Path
-
 import pytest
+from browser import chromium_context, load_synthetic
 
-DATA = Path(__file__).resolve().parents[1] / "data"
-CHROMIUM = "/usr/bin/chromium"
-CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                 "--disable-quic"]
 EVIL = "<script>window.pwned = 1</script><img src=x onerror=\"window.pwned = 2\">"
 
 
 @pytest.fixture(scope="session")
 def synthetic():
     """The synthetic trace generator (tests/data/traces/synthetic.py) as a module."""
-    spec = importlib.util.spec_from_file_location("simiam_test_synthetic_r", DATA / "traces" / "synthetic.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_synthetic("simiam_test_synthetic_r")
 
 
 @pytest.fixture()
@@ -71,15 +59,4 @@ def week3_result(synthetic):
 @pytest.fixture(scope="module")
 def browser_context():
     """A fresh persistent Chromium profile, headless and offline-minded; closed after the module."""
-    if not Path(CHROMIUM).exists():
-        pytest.skip(f"{CHROMIUM} is absent (apt package 'chromium'); browser tests need it")
-    sync_api = pytest.importorskip("playwright.sync_api",
-                                   reason="the Python playwright package is not installed")
-    profile = tempfile.mkdtemp(prefix="simiam-chromium-")
-    with sync_api.sync_playwright() as p:
-        ctx = p.chromium.launch_persistent_context(profile, executable_path=CHROMIUM, args=CHROMIUM_ARGS,
-                                                   headless=True, viewport={"width": 1200, "height": 900})
-        ctx.route("http*://**", lambda route: route.abort())
-        yield ctx
-        ctx.close()
-    shutil.rmtree(profile, ignore_errors=True)
+    yield from chromium_context({"width": 1200, "height": 900})
