@@ -29,8 +29,8 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 class CourseFilesMissing(RuntimeError):
-    """The grader cannot find the assignment stubs: it was installed without the course folder (a wheel,
-    or ``pip install .``), so it cannot splice anything. Not a student problem: grading stops."""
+    """The grader cannot use its pristine skeletons (missing from a broken installation, or out of date
+    with solutions/ in a checkout), so it cannot splice anything. Not a student problem: grading stops."""
 
 
 def select_checks(week: int, hidden: bool, only: str | None = None) -> tuple[list[Check], list[Check]]:
@@ -48,35 +48,34 @@ def select_checks(week: int, hidden: bool, only: str | None = None) -> tuple[lis
 
 
 @functools.lru_cache(maxsize=1)
-def _generated_stubs() -> dict[str, str]:
-    from simiam.course.stubs import generate
+def _skeletons_out_of_date() -> tuple[str, ...]:
+    """In a checkout with solutions/: the packaged skeletons that differ from what the generator makes
+    now (an instructor edited solutions/ and did not regenerate). Empty where there are no solutions."""
+    from simiam.course.stubs import SKELETONS, differences, generate
 
-    return generate(ROOT / "solutions").files
+    if not (ROOT / "solutions").is_dir():
+        return ()
+    prefix = str(SKELETONS.relative_to(SKELETONS.parents[2]))
+    generated = generate(ROOT / "solutions")
+    return tuple(d for d in differences(generated, SKELETONS.parents[2]) if d.startswith(prefix))
 
 
 def pristine_stubs(week: int, into: Path) -> Path:
-    """The week's untouched stubs: regenerated from solutions/ where the grader has them (so a student's
-    edited assignments/weekN is never mistaken for the stub), else the shipped assignments/weekN."""
-    folder = into / "stubs"
-    folder.mkdir(parents=True, exist_ok=True)
-    prefix = f"assignments/week{week}/"
-    files = {}
-    if (ROOT / "solutions" / f"week{week}").is_dir():
-        files = {k[len(prefix) :]: v for k, v in _generated_stubs().items() if k.startswith(prefix)}
-    if not files:
-        files = {
-            p.name: p.read_text(encoding="utf-8") for p in (ROOT / "assignments" / f"week{week}").glob("*.py")
-        }
-    if not files:
+    """The week's untouched stubs, written into `into/stubs`: always the skeletons packaged with simiam
+    (simiam.course.skeletons), never a folder a student can edit such as assignments/weekN."""
+    from simiam.course.skeletons import SkeletonsMissing, write_skeleton
+
+    stale = _skeletons_out_of_date()
+    if stale:
+        raise CourseFilesMissing(
+            "the packaged skeletons are out of date with solutions/ (" + ", ".join(stale[:3])
+            + "): run `python -m simiam.course.stubs` to regenerate them, then grade again")
+    try:
+        return write_skeleton(week, into / "stubs")
+    except SkeletonsMissing as exc:
         # Without stubs every file would be "not part of the assignment" and every submission would score
         # 0: refuse loudly instead of grading.
-        raise CourseFilesMissing(
-            f"the assignment stubs for week {week} are not installed next to the grader "
-            f"({ROOT / 'assignments'} is missing): install the grader from the course checkout with "
-            "`pip install -e .`")
-    for name, text in files.items():
-        (folder / name).write_text(text, encoding="utf-8")
-    return folder
+        raise CourseFilesMissing(str(exc)) from None
 
 
 def _splice(week: int, submission: Path, tmp: Path) -> tuple[Path, dict[str, list[str]], list[str]]:

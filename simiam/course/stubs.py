@@ -2,8 +2,10 @@
 
 Every `.py` file of a week's solutions is copied; the body of each block that is *new that week*
 (simiam.course.placeholders) is replaced by its placeholder, and the blocks of earlier weeks ship filled,
-as the course did. The generator also writes `simiam/course/shipped_blocks.py`, the list of blocks each
-week ships with a fingerprint of each shipped body: `simiam migrate` reads it (students have no solutions).
+as the course did. The same stubs are written twice: to assignments/weekN (what students receive) and to
+simiam/course/skeletons/weekN (package data: the pristine copies the grader splices into, which ship in the
+wheel). The generator also writes `simiam/course/shipped_blocks.py`, the list of blocks each week ships with
+a fingerprint of each shipped body: `simiam migrate` reads it (students have no solutions).
 
     python -m simiam.course.stubs            # regenerate assignments/week1..4 and shipped_blocks.py
     python -m simiam.course.stubs --check    # exit 1 if the committed files differ from what it generates
@@ -22,6 +24,9 @@ from simiam.course.placeholders import placeholder_for
 WEEKS = (1, 2, 3, 4)
 ROOT = Path(__file__).resolve().parents[2]
 MANIFEST = Path(__file__).with_name("shipped_blocks.py")
+SKELETONS = Path(__file__).with_name("skeletons")
+# Every folder the generator owns: stale .py files in them are reported (--check) and removed (write).
+STUB_FOLDERS = ("assignments/week{week}", str(SKELETONS.relative_to(ROOT)) + "/week{week}")
 _SKIP = {"__pycache__", ".pytest_cache"}
 
 
@@ -84,7 +89,8 @@ def generate(solutions: Path = ROOT / "solutions") -> Generated:
                 text, rows = stub_text(week, src.read_text(encoding="utf-8"), src.name)
             except BlockError as e:
                 raise BlockError(f"solutions/week{week}/{e.file}", e.line, e.message) from None
-            files[f"assignments/week{week}/{src.name}"] = text
+            for folder in STUB_FOLDERS:
+                files[f"{folder.format(week=week)}/{src.name}"] = text
             if rows:
                 manifest[week][src.name] = rows
     files[str(MANIFEST.relative_to(ROOT))] = _manifest_source(manifest)
@@ -125,12 +131,19 @@ def differences(generated: Generated, root: Path = ROOT) -> list[str]:
         for p, text in generated.files.items()
         if not (root / p).is_file() or (root / p).read_text(encoding="utf-8") != text
     ]
-    for week in WEEKS:
-        for path in sorted((root / f"assignments/week{week}").glob("*.py")):
-            rel = str(path.relative_to(root))
-            if rel not in generated.files:
-                out.append(f"{rel} (no longer in solutions/)")
+    out += [f"{rel} (no longer in solutions/)" for rel in _stale(generated, root)]
     return out
+
+
+def _stale(generated: Generated, root: Path) -> list[str]:
+    """Stub files in the generator's folders that it no longer writes."""
+    return [
+        str(path.relative_to(root))
+        for week in WEEKS
+        for folder in STUB_FOLDERS
+        for path in sorted((root / folder.format(week=week)).glob("*.py"))
+        if str(path.relative_to(root)) not in generated.files
+    ]
 
 
 def write(generated: Generated, root: Path = ROOT) -> list[str]:
@@ -141,10 +154,8 @@ def write(generated: Generated, root: Path = ROOT) -> list[str]:
         path.parent.mkdir(parents=True, exist_ok=True)
         if not path.is_file() or path.read_text(encoding="utf-8") != text:
             path.write_text(text, encoding="utf-8")
-    for week in WEEKS:
-        for path in (root / f"assignments/week{week}").glob("*.py"):
-            if str(path.relative_to(root)) not in generated.files:
-                path.unlink()
+    for rel in _stale(generated, root):
+        (root / rel).unlink()
     return changed
 
 

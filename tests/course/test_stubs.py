@@ -239,3 +239,30 @@ def test_incomplete_readme_is_caught():
         check_readme(4, text.replace("apply_sensor_geometry", "the geometry"))
     with pytest.raises(AssertionError, match="grade week3"):
         check_readme(3, (ROOT / "assignments/week3/README.md").read_text().replace("grade week3", "grade it"))
+
+
+# ------------------------------------------------------------------------- the packaged skeletons (issue 11)
+
+
+def test_packaged_skeletons_are_the_generated_stubs():
+    """What the grader splices into (package data) is exactly what students receive in assignments/."""
+    from simiam.course.skeletons import skeleton_files
+
+    for week in WEEKS:
+        shipped = {p.name: p.read_text() for p in (ROOT / "assignments" / f"week{week}").glob("*.py")}
+        assert skeleton_files(week) == shipped
+
+
+def test_skeleton_drift_is_detected(tmp_path):
+    """A skeleton edited by hand or left behind is caught, and `write` puts it back / removes it."""
+    generated = generate()
+    write(generated, tmp_path)
+    skel = tmp_path / "simiam/course/skeletons/week3/go_to_goal.py"
+    skel.write_text(skel.read_text().replace("self.E_k = 0", "self.E_k = 1"))
+    (tmp_path / "simiam/course/skeletons/week4/old.py").write_text("x = 1\n")
+    assert differences(generated, tmp_path) == [
+        "simiam/course/skeletons/week3/go_to_goal.py",
+        "simiam/course/skeletons/week4/old.py (no longer in solutions/)",
+    ]
+    write(generated, tmp_path)
+    assert differences(generated, tmp_path) == []

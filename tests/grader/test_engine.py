@@ -116,15 +116,53 @@ def test_a_timeout_in_the_middle_of_a_property_search_is_reported_as_a_timeout()
                                "no answer within 2 s, the time limit per call")
 
 
-def test_a_grader_installed_without_the_course_files_refuses_instead_of_scoring_zero(
+def test_an_edited_assignments_folder_is_never_taken_as_the_pristine_stubs(
+        tmp_path: Path, monkeypatch) -> None:
+    """Issue 11: in a checkout without solutions/, the student's own assignments/week3 (edited outside the
+    blocks) used to be the "pristine" stub, so the edit ran. The packaged skeletons are used instead."""
+    from grader import grading
+
+    fake = tmp_path / "checkout"
+    shutil.copytree(ROOT / "assignments" / "week3", fake / "assignments" / "week3")
+    edited = fake / "assignments" / "week3" / "go_to_goal.py"
+    edited.write_text(edited.read_text().replace("self.E_k = 0", "self.E_k = 7"))
+    monkeypatch.setattr(grading, "ROOT", fake)
+    stubs = grading.pristine_stubs(3, tmp_path / "splice")
+    assert "self.E_k = 7" not in (stubs / "go_to_goal.py").read_text()
+    assert (stubs / "go_to_goal.py").read_text() == (ROOT / "assignments/week3/go_to_goal.py").read_text()
+    result = grade_submission(3, fake / "assignments" / "week3", seed=1, only="week3.pid.integral")
+    assert any("go_to_goal.py" in n and "self.E_k = 7" in n for n in result["notices"])
+
+
+def test_a_grader_installed_without_its_skeletons_refuses_instead_of_scoring_zero(
         tmp_path: Path, monkeypatch, capsys) -> None:
-    """A wheel (`pip install .`) has no assignments/: splicing into nothing would give every student 0."""
+    """A broken build without the skeleton data: splicing into nothing would give every student 0."""
+    import pytest
+
+    from grader import grading
+    from simiam.course import skeletons
+
+    monkeypatch.setattr(skeletons, "__name__", "simiam.course")  # resources of a package without weekN/
+    with pytest.raises(grading.CourseFilesMissing, match="skeleton files of week 3 are missing"):
+        grade_submission(3, ROOT / "solutions" / "week3", seed=1)
+    assert grade_main(["week3", str(ROOT / "solutions" / "week3"), "--out", str(tmp_path / "r")]) == 2
+    assert "skeleton files of week 3 are missing" in capsys.readouterr().err
+
+
+def test_skeletons_out_of_date_with_the_solutions_refuse(tmp_path: Path, monkeypatch) -> None:
+    """In a checkout, solutions/ changed outside a block without regenerating: grading stops and says how."""
     import pytest
 
     from grader import grading
 
-    monkeypatch.setattr(grading, "ROOT", tmp_path / "site-packages")
-    with pytest.raises(grading.CourseFilesMissing, match="pip install -e"):
-        grade_submission(3, ROOT / "solutions" / "week3", seed=1)
-    assert grade_main(["week3", str(ROOT / "solutions" / "week3"), "--out", str(tmp_path / "r")]) == 2
-    assert "assignment stubs for week 3 are not installed" in capsys.readouterr().err
+    fake = tmp_path / "checkout"
+    shutil.copytree(ROOT / "solutions", fake / "solutions")
+    sol = fake / "solutions" / "week3" / "go_to_goal.py"
+    sol.write_text(sol.read_text().replace("self.E_k = 0", "self.E_k = 5"))
+    monkeypatch.setattr(grading, "ROOT", fake)
+    grading._skeletons_out_of_date.cache_clear()
+    try:
+        with pytest.raises(grading.CourseFilesMissing, match="python -m simiam.course.stubs"):
+            grading.pristine_stubs(3, tmp_path / "splice")
+    finally:
+        grading._skeletons_out_of_date.cache_clear()
