@@ -19,8 +19,9 @@ import sys
 import textwrap
 from pathlib import Path
 
-from grader.grading import DEFAULT_SEED, ROOT, CourseFilesMissing, grade_submission
+from grader.grading import DEFAULT_SEED, CourseFilesMissing, grade_submission
 from grader.result import all_passed
+from simiam.course.folders import WeekFolderNotFound, week_folder
 
 WEEKS = (1, 2, 3, 4)
 _MARK = {"passed": "ok", "failed": "FAIL", "error": "ERROR", "timeout": "TIMEOUT"}
@@ -31,7 +32,8 @@ def _parser() -> argparse.ArgumentParser:
         prog="grade", description="Grade a Control of Mobile Robots (QuickBot) assignment."
     )
     p.add_argument("week", help="week1 .. week4, or all")
-    p.add_argument("path", nargs="?", default=None, help="submission folder (default ./assignments/weekN)")
+    p.add_argument("path", nargs="?", default=None, help="submission folder (default: the current folder "
+                   "if named weekN, else ./weekN, else ./assignments/weekN)")
     p.add_argument("--solutions", action="store_true", help="grade solutions/weekN (the reference solutions)")
     p.add_argument(
         "--out",
@@ -74,11 +76,9 @@ def _week(text: str) -> int:
 
 
 def _folder(args: argparse.Namespace, week: int, many: bool) -> Path:
-    if args.solutions:
-        return ROOT / "solutions" / f"week{week}"
-    if args.path is None:
-        return Path("assignments") / f"week{week}"
-    return Path(args.path) / f"week{week}" if many else Path(args.path)
+    """PATH (PATH/weekN for `grade all`), solutions/weekN, or the default rule (simiam.course.folders)."""
+    path = Path(args.path) / f"week{week}" if many and args.path else args.path
+    return week_folder(week, path, solutions=args.solutions)
 
 
 def print_result(result: dict, out=sys.stdout) -> None:
@@ -124,11 +124,13 @@ def _count(n: int, noun: str) -> str:
 def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
     from grader.properties import parse_case
 
-    folder = _folder(args, week, many)
+    try:
+        folder = _folder(args, week, many)
+    except WeekFolderNotFound as exc:
+        print(f"grade: {exc} (grade week{week} PATH)", file=sys.stderr)
+        return 2
     if not folder.is_dir():
-        hint = "" if args.path or args.solutions else \
-            f" (run grade from the course folder, or name your folder: grade week{week} PATH)"
-        print(f"grade: no such folder: {folder}{hint}", file=sys.stderr)
+        print(f"grade: no such folder: {folder}", file=sys.stderr)
         return 2
     case = parse_case(args.case) if args.case else None
     shown = "--solutions" if args.solutions else str(folder)

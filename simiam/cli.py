@@ -12,7 +12,8 @@ def _parser() -> argparse.ArgumentParser:
 
     run = sub.add_parser("run", help="run a week's scenario headless and write a trace and a replay page")
     run.add_argument("week", help="week1 .. week4")
-    run.add_argument("path", nargs="?", default=None, help="submission folder (default ./assignments/weekN)")
+    run.add_argument("path", nargs="?", default=None, help="submission folder (default: the current folder "
+                     "if named weekN, else ./weekN, else ./assignments/weekN)")
     run.add_argument("--solutions", action="store_true", help="use solutions/weekN")
     run.add_argument("--seconds", type=float, default=None, help="simulated time (default: the week's)")
     run.add_argument("--dt", type=float, default=0.033, help="time step in seconds (0.033 or 0.05)")
@@ -21,10 +22,10 @@ def _parser() -> argparse.ArgumentParser:
 
     mig = sub.add_parser("migrate", help="carry your filled blocks from last week's folder into this week's")
     mig.add_argument("week", help="the week to migrate into, e.g. week3")
-    mig.add_argument("--from", dest="source", required=True, help="last week's folder")
-    mig.add_argument(
-        "--to", dest="target", default=None, help="this week's folder (default ./assignments/weekN)"
-    )
+    mig.add_argument("--from", dest="source", required=True,
+                     help="last week's folder (a bare weekN is looked for like --to's default)")
+    mig.add_argument("--to", dest="target", default=None, help="this week's folder (default: the current "
+                     "folder if named weekN, else ./weekN, else ./assignments/weekN)")
     mig.add_argument("--dry-run", action="store_true", help="say what would move, change nothing")
 
     bench = sub.add_parser("bench", help="steps per second of one QuickBot in the week-4 world")

@@ -15,23 +15,21 @@ from pathlib import Path
 
 from simiam.control.local_brain import LocalBrain
 from simiam.control.supervisor import Supervisor
+from simiam.course.folders import WeekFolderNotFound, week_folder
 from simiam.course.loader import load_submission, locate_in_folder
 from simiam.course.weeks import WeekConfig, week_config
 from simiam.simulator import BrainError, Simulator, add_row
 from simiam.trace import Trace
 from simiam.world import WorldFileError, load_world
 
-REPO = Path(__file__).resolve().parents[1]
 MAX_STEPS = 1_000_000  # 9 simulated hours at 0.033 s; a trace of that size is already ~1 GB in memory
 
 
 def resolve_folder(week: WeekConfig, path: str | None, solutions: bool) -> Path:
-    """The submission folder: PATH, or solutions/weekN, or ./assignments/weekN (cwd first, then the repo)."""
-    if path:
-        return Path(path).expanduser()
-    kind = "solutions" if solutions else "assignments"
-    here = Path.cwd() / kind / week.name
-    return here if here.is_dir() else REPO / kind / week.name
+    """The submission folder: PATH, or the checkout's solutions/weekN, or the default rule shared with
+    `grade` and `simiam migrate` (simiam.course.folders: this folder if named weekN, ./weekN,
+    ./assignments/weekN). Raises WeekFolderNotFound with a message for the student."""
+    return week_folder(week.number, path, solutions=solutions)
 
 
 def _fail(message: str, code: int) -> int:
@@ -56,7 +54,10 @@ def main(args: argparse.Namespace) -> int:
     if steps > MAX_STEPS:
         return _fail(f"simiam run: {seconds:g} s at dt = {args.dt:g} s is {steps:.3g} steps; "
                      f"at most {MAX_STEPS:,} (the trace keeps every step in memory)", 2)
-    folder = resolve_folder(week, args.path, args.solutions)
+    try:
+        folder = resolve_folder(week, args.path, args.solutions)
+    except WeekFolderNotFound as exc:
+        return _fail(f"simiam run: {exc} (simiam run {week.name} PATH)", 2)
     if not folder.is_dir():
         return _fail(f"simiam run: no such folder: {folder}", 2)
     try:

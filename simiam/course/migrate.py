@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from simiam.course.blocks import Block, BlockError, def_line, find_blocks, fingerprint, replace_bodies
+from simiam.course.folders import WeekFolderNotFound, default_week_folder, week_folder
 from simiam.course.placeholders import placeholder_for
 from simiam.course.shipped_blocks import SHIPPED
 from simiam.course.splice import check_body, read_submission_file
@@ -273,6 +274,18 @@ def _week(text: str) -> int | None:
     return int(t) if t.isdigit() else None
 
 
+def _source_folder(given: str, last_week: int) -> Path:
+    """--from: the folder given; a bare `weekN` that is no folder here is looked for by the default rule
+    (./weekN, ./assignments/weekN), so `--from week3` works in the checkout and in a course folder."""
+    path = Path(given).expanduser()
+    if path.is_dir() or str(given).strip().lower() != f"week{last_week}":
+        return path
+    try:
+        return default_week_folder(last_week)
+    except WeekFolderNotFound:
+        return path  # reported as "no such folder" with the name the student typed
+
+
 def main(args: argparse.Namespace) -> int:
     """`simiam migrate` (args: week, source, target, dry_run). Exit 0 done, 1 refused, 2 bad arguments."""
     week = _week(args.week)
@@ -281,8 +294,12 @@ def main(args: argparse.Namespace) -> int:
             f"simiam migrate: no week {args.week!r} to migrate into (week2, week3 or week4)", file=sys.stderr
         )
         return EXIT_USAGE
-    source = Path(args.source)
-    target = Path(args.target) if args.target else Path("assignments") / f"week{week}"
+    try:
+        source = _source_folder(args.source, week - 1)
+        target = week_folder(week, args.target)
+    except WeekFolderNotFound as exc:
+        print(f"simiam migrate: {exc} (--to PATH)", file=sys.stderr)
+        return EXIT_USAGE
     for what, folder in (("--from", source), ("--to", target)):
         if not folder.is_dir():
             print(f"simiam migrate: {what} {folder}: no such folder", file=sys.stderr)

@@ -1,0 +1,58 @@
+"""Where a week's folder is when the command line names none: one rule for `grade`, `simiam run` and
+`simiam migrate`.
+
+    1. the current folder, if it is named weekN (you are inside your week folder);
+    2. else ./weekN (you are in the folder that holds your week folders);
+    3. else ./assignments/weekN (you are in the course checkout);
+    4. else a clear message naming the three places looked at.
+
+`--solutions` (instructors, in the course checkout) means the checkout's solutions/weekN; a student
+package has no solutions/ and says so.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+# The checkout this package was imported from (an editable install); in a wheel, site-packages.
+CHECKOUT = Path(__file__).resolve().parents[2]
+
+
+class WeekFolderNotFound(ValueError):
+    """No folder for the week where the rule looks; the message says where it looked and what to do."""
+
+
+def default_week_folder(week: int, cwd: Path | None = None) -> Path:
+    """The week-`week` folder by the rule above (relative to `cwd`, default the current folder)."""
+    here = Path.cwd() if cwd is None else Path(cwd)
+    name = f"week{int(week)}"
+    if here.name == name:
+        return here
+    for candidate in (here / name, here / "assignments" / name):
+        if candidate.is_dir():
+            return candidate
+    raise WeekFolderNotFound(
+        f"no {name} folder here: looked at the current folder ({here} is not named {name}), ./{name} and "
+        f"./assignments/{name}; go into your {name} folder (or the folder holding it), or name the "
+        "folder on the command line"
+    )
+
+
+def solutions_folder(week: int) -> Path:
+    """solutions/weekN of the course checkout; WeekFolderNotFound in a student package (no solutions)."""
+    folder = CHECKOUT / "solutions" / f"week{int(week)}"
+    if not folder.is_dir():
+        raise WeekFolderNotFound(
+            f"--solutions needs the course checkout (this installation has no {folder}): the reference "
+            "solutions are not part of the student package"
+        )
+    return folder
+
+
+def week_folder(week: int, path: str | Path | None = None, solutions: bool = False) -> Path:
+    """The folder a command works on: PATH when given, solutions/weekN with `solutions`, else the rule."""
+    if path is not None and str(path) != "":
+        return Path(path).expanduser()
+    if solutions:
+        return solutions_folder(week)
+    return default_week_folder(week)
