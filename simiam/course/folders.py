@@ -12,10 +12,16 @@ package has no solutions/ and says so.
 
 from __future__ import annotations
 
+import importlib
+import sys
 from pathlib import Path
+from types import ModuleType
 
 # The checkout this package was imported from (an editable install); in a wheel, site-packages.
 CHECKOUT = Path(__file__).resolve().parents[2]
+
+
+INSTRUCTOR_TOOLS = CHECKOUT / "instructor_tools"
 
 
 class WeekFolderNotFound(ValueError):
@@ -56,3 +62,20 @@ def week_folder(week: int, path: str | Path | None = None, solutions: bool = Fal
     if solutions:
         return solutions_folder(week)
     return default_week_folder(week)
+
+
+class NotInCheckout(RuntimeError):
+    """Instructor tooling asked for outside the course checkout (a student package does not hold it)."""
+
+
+def instructor_tool(module: str) -> ModuleType:
+    """`instructor_tools.<module>` from the course checkout this package runs from (an editable install);
+    NotInCheckout in a student package, which holds no instructor tooling."""
+    if not (INSTRUCTOR_TOOLS / f"{module}.py").is_file():
+        raise NotInCheckout(
+            f"instructor_tools/{module}.py is instructor tooling in the course checkout, not part of the "
+            "student package: run this from the checkout (pip install -e .)"
+        )
+    if str(CHECKOUT) not in sys.path:
+        sys.path.append(str(CHECKOUT))  # appended: never shadows an installed module
+    return importlib.import_module(f"instructor_tools.{module}")

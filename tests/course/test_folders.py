@@ -74,3 +74,19 @@ def test_run_and_migrate_from_inside_a_course_folder(tmp_path: Path, monkeypatch
     monkeypatch.chdir(tmp_path / "week3")
     assert simiam_main(["run", "week3", "--seconds", "0.5", "--out", str(tmp_path / "runs")]) == 0
     assert f"with {tmp_path / 'week3'}" in capsys.readouterr().out
+
+
+def test_instructor_tooling_outside_the_checkout_says_so(tmp_path: Path, monkeypatch, capsys) -> None:
+    """A student package holds no reference controllers: `simiam bench` exits 2 and says why."""
+    monkeypatch.setattr(folders, "INSTRUCTOR_TOOLS", tmp_path / "instructor_tools")
+    assert simiam_main(["bench", "--seconds", "0.1"]) == 2
+    assert "instructor tooling in the course checkout" in capsys.readouterr().err
+
+
+def test_the_hidden_set_lives_with_the_instructor_tools(monkeypatch) -> None:
+    from grader.hidden import hidden_dir, load_hidden
+
+    monkeypatch.delenv("SIMIAM_HIDDEN", raising=False)
+    assert hidden_dir() == ROOT / "instructor_tools" / "hidden"
+    assert load_hidden(4)["variants"]
+    assert not list((ROOT / "grader").rglob("*.json"))  # nothing hidden left inside the grader package

@@ -96,7 +96,8 @@ def test_odometry_after_control_in_week4_is_caught(tmp_path):
 
 # The golden files here hold goal 1 of each run; the full recordings also have goals (-1, 1) and (0, -1)
 # (../shared/golden/README.md), kept back. Until they are dropped in, the solutions are run on those goals
-# against the independent reference brain (simiam.reference_brains), which reproduces every recorded goal:
+# against the independent reference brain (instructor_tools.reference_brains), which reproduces every
+# recorded goal:
 # both must command the very same wheel speeds at every step (goal 2 zeroes a wheel at step 16 by one ulp).
 BRAIN_OPTIONS = {
     "gotogoal_closed_loop.csv": (0.033, {}),
@@ -108,7 +109,7 @@ BRAIN_OPTIONS = {
 
 def disagreement(folder: Path, name: str, goal: tuple[float, float]) -> str | None:
     """First step where the folder's code and the reference brain command different wheel speeds."""
-    from simiam.reference_brains import GoToGoalBrain
+    from instructor_tools.reference_brains import GoToGoalBrain
 
     week, gains = RUNS[name]
     dt, options = BRAIN_OPTIONS[name]

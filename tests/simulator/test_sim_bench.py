@@ -8,8 +8,8 @@ from types import SimpleNamespace
 
 import pytest
 
+from instructor_tools.reference_brains import AvoidObstaclesBrain
 from simiam.bench import main
-from simiam.reference_brains import AvoidObstaclesBrain
 from simiam.robot.quickbot import spec_for_week
 from simiam.simulator import Simulator
 from simiam.world import load_world

@@ -1,6 +1,6 @@
 """The step loop against the recorded closed-loop GoToGoal runs, driven by the trusted reference brain
-(simiam.reference_brains, not the course code): true poses <= 1e-6 m over the whole run, ticks exact,
-wheel speeds exact. Every goal present in the files is run."""
+(instructor_tools.reference_brains, not the course code): true poses <= 1e-6 m over the whole run,
+ticks exact, wheel speeds exact. Every goal present in the files is run."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import csv
 import pytest
 from sim_helpers import DATA, wrong
 
-from simiam.reference_brains import GoToGoalBrain
+from instructor_tools.reference_brains import GoToGoalBrain
 from simiam.robot.quickbot import spec_for_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
@@ -66,7 +66,7 @@ def ensure_w_mismatches(limit_after_week3: bool = True) -> tuple[int, int]:
     """The reference brains' ensure_w against ensure_w.csv (every version and row): (rows, mismatches)."""
     import dataclasses
 
-    from simiam.reference_brains import ReferenceSupervisor
+    from instructor_tools.reference_brains import ReferenceSupervisor
     from simiam.robot.quickbot import limit_speeds
 
     with (DATA / "golden" / "ensure_w.csv").open(newline="") as f:

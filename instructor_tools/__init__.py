@@ -1,0 +1,11 @@
+"""Instructor tooling that must never reach students: it lives in the course checkout only and is left
+out of the wheel (pyproject.toml packages only simiam and grader; tests/packaging proves it).
+
+- `reference_brains`: complete reference controllers (go-to-goal, avoid-obstacles) used by `simiam bench`,
+  the fleet and the closed-loop fidelity cross-checks;
+- `hidden/weekN.json`: the hidden scenario variants of official grading (`grade --hidden`, batch), each
+  validated against the reference solution by tests/grader/test_hidden.py.
+
+Importable with the repository root on sys.path (`python -m pytest` from the checkout); the console
+scripts of an editable install reach it through `simiam.course.folders.instructor_tool`.
+"""
