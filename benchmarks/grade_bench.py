@@ -1,43 +1,85 @@
-"""Seconds to grade one submission per week (the reference solutions), visible checks and with --hidden.
+"""Seconds to grade one submission (the reference solutions), wall and CPU, with a baseline from the same run.
 
-    python benchmarks/grade_bench.py [--repeat 3] [--sandbox auto|bwrap|subprocess]
+    python benchmarks/grade_bench.py [--repeat 3] [--weeks 1 2 3 4] [--cli-week 3] [--no-hidden]
+                                     [--sandbox auto|bwrap|subprocess]
 
-Prints one line per week: best and median wall seconds over the repetitions, the checks' own time, and
-the isolation used. A figure to read, not a test (the target is <= 2 s wall for week 3).
+Prints the machine line; the baseline (a fresh `python -c 'import grader.grading'` plus a bare sandboxed
+worker start, see grading_baseline.py); then `grade weekN --solutions` as a user runs it (a fresh
+process: imports, splicing, the worker, every check, the HTML report), and grade_submission per week in
+this already-warm process, visible checks and with --hidden. Each figure in wall and CPU seconds (all
+processes: the grader and its sandboxed workers) and as a ratio to the baseline. A figure to read, not a
+test: on a shared machine compare CPU seconds and the ratios, not wall seconds.
 """
 
 from __future__ import annotations
 
 import argparse
 import statistics
-import time
+import subprocess
+import sys
+import tempfile
 from pathlib import Path
 
+from grading_baseline import Baseline, measure_baseline
+
 from grader.grading import grade_submission
+from simiam.machine import Stopwatch, Usage, load_after_line, machine_line, median_usage, ratio
 
 ROOT = Path(__file__).resolve().parents[1]
+_CLI = "import sys; from grader.cli import main; sys.exit(main())"  # what the `grade` script runs
 
 
-def main() -> None:
+def cli_run(week: int, sandbox: str) -> Usage:
+    """`grade weekN --solutions` in a fresh process, report written into a temporary folder."""
+    with tempfile.TemporaryDirectory(prefix="simiam-bench-") as out, Stopwatch() as sw:
+        done = subprocess.run([sys.executable, "-c", _CLI, f"week{week}", "--solutions", "--out", out,
+                               "--sandbox", sandbox], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                              text=True)
+    if done.returncode != 0:
+        raise SystemExit(f"grade week{week} --solutions failed ({done.returncode}): {done.stderr[-2000:]}")
+    return sw.usage
+
+
+def _figure(label: str, usages: list[Usage], base: Baseline, extra: str = "") -> str:
+    u = median_usage(usages)
+    return (f"{label}: wall {u.wall:.2f} s median ({min(x.wall for x in usages):.2f} best), "
+            f"CPU {u.cpu:.2f} s ({u.cpu_self:.2f} in this process + {u.cpu_children:.2f} in children) = "
+            f"{ratio(u.wall, base.total.wall):.1f}x baseline wall, "
+            f"{ratio(u.cpu, base.total.cpu):.1f}x baseline CPU{extra}")
+
+
+def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--repeat", type=int, default=3)
-    p.add_argument("--sandbox", default="auto")
-    args = p.parse_args()
-    for hidden in (False, True):
-        for week in (1, 2, 3, 4):
-            walls, checks, isolation = [], [], "?"
+    p.add_argument("--repeat", type=int, default=3, help="runs per figure (the median is printed)")
+    p.add_argument("--weeks", type=int, nargs="+", default=[1, 2, 3, 4], choices=[1, 2, 3, 4])
+    p.add_argument("--cli-week", type=int, default=3, choices=[1, 2, 3, 4],
+                   help="the week graded as a fresh `grade` process")
+    p.add_argument("--no-hidden", action="store_true", help="skip the --hidden figures")
+    p.add_argument("--sandbox", default="auto", choices=["auto", "bwrap", "subprocess"])
+    args = p.parse_args(argv)
+    if args.repeat < 1:
+        p.error("--repeat must be at least 1")
+    base = measure_baseline(args.sandbox, week=args.cli_week, runs=max(3, args.repeat))
+    print(machine_line(base.sandbox), flush=True)
+    print("\n".join(base.lines()), flush=True)
+    runs = [cli_run(args.cli_week, args.sandbox) for _ in range(args.repeat)]
+    print(_figure(f"grade week{args.cli_week} --solutions (fresh process)", runs, base), flush=True)
+    for hidden in (False, True) if not args.no_hidden else (False,):
+        for week in args.weeks:
+            usages, checks = [], []
             for _ in range(args.repeat):
-                began = time.perf_counter()
-                result = grade_submission(week, ROOT / "solutions" / f"week{week}", seed=2014, hidden=hidden,
-                                          sandbox=args.sandbox)
-                walls.append(time.perf_counter() - began)
+                with Stopwatch() as sw:
+                    result = grade_submission(week, ROOT / "solutions" / f"week{week}", seed=2014,
+                                              hidden=hidden, sandbox=args.sandbox)
+                usages.append(sw.usage)
                 checks.append(sum(result["timing"]["checks"].values()))
-                isolation = result.get("isolation", "?")
-            print(f"week{week} {'hidden ' if hidden else 'visible'}: wall best {min(walls):.2f} s, "
-                  f"median {statistics.median(walls):.2f} s; checks {statistics.median(checks):.2f} s; "
-                  f"{len(result['checks'])} checks, score {result['score']:g}/{result['max_score']:g}, "
-                  f"isolation {isolation}")
+            extra = (f"; checks {statistics.median(checks):.2f} s, {len(result['checks'])} checks, score "
+                     f"{result['score']:g}/{result['max_score']:g}, isolation {result.get('isolation', '?')}")
+            label = f"week{week} {'hidden ' if hidden else 'visible'} grade_submission (warm process)"
+            print(_figure(label, usages, base, extra), flush=True)
+    print(load_after_line())
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

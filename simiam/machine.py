@@ -13,6 +13,7 @@ from __future__ import annotations
 import os
 import platform
 import resource
+import statistics
 import threading
 import time
 from dataclasses import dataclass
@@ -197,6 +198,12 @@ class Stopwatch:
             kids = max(kids, self._tree.stop())
             me = max(0.0, me - self._tree.own_cpu)
         self.usage = Usage(wall, me, kids)
+
+
+def median_usage(usages: list[Usage]) -> Usage:
+    """The median of each clock over several runs of the same thing."""
+    return Usage(statistics.median(u.wall for u in usages), statistics.median(u.cpu_self for u in usages),
+                 statistics.median(u.cpu_children for u in usages))
 
 
 def ratio(value: float, baseline: float) -> float:

@@ -16,7 +16,6 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -24,7 +23,15 @@ from pathlib import Path
 
 from grader.sandbox.isolation import BWRAP, SUBPROCESS, bwrap_works
 from grader.sandbox.session import StudentSession
-from simiam.machine import Stopwatch, Usage, descendants_cpu, load_after_line, machine_line, ratio
+from simiam.machine import (
+    Stopwatch,
+    Usage,
+    descendants_cpu,
+    load_after_line,
+    machine_line,
+    median_usage,
+    ratio,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -36,8 +43,10 @@ def _readings(k: int, dt: float) -> dict:
     return {"t": k * dt, "dt": dt, "ticks": [k, k], "ir_raw": [200, 200, 200, 200, 200]}
 
 
-def sandbox_description() -> str:
-    """What isolation a worker gets here, in words, for the machine line."""
+def sandbox_description(sandbox: str = "auto") -> str:
+    """What isolation a worker gets here with `sandbox` (auto, bwrap, subprocess), in words."""
+    if sandbox == SUBPROCESS:
+        return "plain subprocess (chosen)"
     works, why = bwrap_works()
     return "bubblewrap" if works else f"plain subprocess (bubblewrap unusable: {why})"
 
@@ -49,7 +58,7 @@ def interpreter_start(runs: int = 5) -> Usage:
         with Stopwatch() as sw:
             subprocess.run([sys.executable, "-I", "-S", "-c", "pass"], check=True)
         usages.append(sw.usage)
-    return _median(usages)
+    return median_usage(usages)
 
 
 def worker_start(week: int, folder: Path, mode: str) -> Usage:
@@ -89,7 +98,7 @@ def measure(mode: str, week: int, starts: int, calls: int) -> dict:
     """Start `starts` fresh workers, then time `calls` pings and brain steps on one worker each."""
     folder = ROOT / "solutions" / f"week{week}"
     start_usages = [worker_start(week, folder, mode) for _ in range(starts)]
-    start = _median(start_usages)
+    start = median_usage(start_usages)
     per_call = {}
     for op in ("ping", "brain_step"):
         with StudentSession(week, folder, sandbox=mode) as session:
@@ -107,11 +116,6 @@ def measure(mode: str, week: int, starts: int, calls: int) -> dict:
         per_call[op] = Usage(loop.usage.wall / calls, loop.usage.cpu_self / calls, worker_cpu / calls)
     return {"mode": mode, "start": start, "start_max_wall": max(u.wall for u in start_usages),
             "ping": per_call["ping"], "brain_step": per_call["brain_step"]}
-
-
-def _median(usages: list[Usage]) -> Usage:
-    return Usage(statistics.median(u.wall for u in usages), statistics.median(u.cpu_self for u in usages),
-                 statistics.median(u.cpu_children for u in usages))
 
 
 def main(argv: list[str] | None = None) -> None:
