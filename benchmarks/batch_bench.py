@@ -5,7 +5,10 @@
 
 Each run grades a fresh class (copies of solutions/weekN, or stubs, or both alternating) from scratch
 into a fresh output folder, exactly as ``grade weekN --batch DIR --jobs J --force`` would, grading
-processes' start-up included. It prints figures; it asserts nothing (timing depends on the machine).
+processes' start-up included. It prints the machine line, the baseline of grading_baseline.py measured in
+the same run (a fresh `python -c 'import grader.grading'` plus a bare sandboxed worker), and per run the
+wall and CPU seconds of all processes (grading processes and their sandboxed workers) per submission, with
+their ratios to the baseline. It asserts nothing: on a shared machine compare CPU and the ratios.
 """
 
 from __future__ import annotations
@@ -15,8 +18,11 @@ import json
 import shutil
 import sys
 import tempfile
-import time
 from pathlib import Path
+
+from grading_baseline import measure_baseline
+
+from simiam.machine import Stopwatch, load_after_line, machine_line, ratio
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -33,16 +39,17 @@ def bench(week: int, jobs: int, n: int, kind: str, sandbox: str) -> dict:
     with tempfile.TemporaryDirectory(prefix="simiam-bench-") as tmp:
         klass, out = Path(tmp) / "class", Path(tmp) / "out"
         make_class(klass, week, n, kind)
-        began = time.perf_counter()
-        report = run_batch(BatchOptions(week=week, batch_dir=klass, out=out, seed=2014, jobs=jobs,
-                                        quiet=True, force=True, sandbox=sandbox))
-        seconds = time.perf_counter() - began
+        with Stopwatch() as sw:
+            report = run_batch(BatchOptions(week=week, batch_dir=klass, out=out, seed=2014, jobs=jobs,
+                                            quiet=True, force=True, sandbox=sandbox))
+        seconds = sw.usage.wall
         results = [json.loads(p.read_text()) for p in out.glob("student*.json")]
     timings = [r.get("timing", {}) for r in results]
     grading = [t["grade_submission_seconds"] for t in timings if "grade_submission_seconds" in t]
     harness = [t["batch_seconds"] - t["grade_submission_seconds"] for t in timings
                if "grade_submission_seconds" in t and "batch_seconds" in t]
     return {"week": week, "jobs": jobs, "n": n, "seconds": seconds, "per_minute": 60 * n / seconds,
+            "cpu_per_submission": sw.usage.cpu / n, "wall_per_submission": seconds / n,
             "graded": report["counts"]["graded"],
             "isolation": sorted({str(r.get("isolation")) for r in results}),
             "grade_s": sum(grading) / len(grading) if grading else float("nan"),
@@ -57,18 +64,30 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--kind", choices=["solutions", "stubs", "mixed"], default="solutions")
     parser.add_argument("--sandbox", default="auto", help="auto | bwrap | subprocess")
     args = parser.parse_args(argv)
-    print(f"{'week':>4} {'jobs':>4} {'n':>4} {'seconds':>8} {'subs/min':>9} {'grade s':>8} "
-          f"{'overhead s':>10}  isolation", flush=True)
+    if args.n < 1 or min(args.jobs) < 1:
+        parser.error("--n and --jobs must be at least 1")
+    base = measure_baseline(args.sandbox)
+    print(machine_line(base.sandbox), flush=True)
+    print("\n".join(base.lines()), flush=True)
+    print(f"{'week':>4} {'jobs':>4} {'n':>4} {'seconds':>8} {'subs/min':>9} {'CPU s/sub':>9} {'x base':>6} "
+          f"{'wall s/sub':>10} {'x base':>6} {'grade s':>8} {'overhead s':>10}  isolation", flush=True)
     for week in args.weeks:
         for jobs in args.jobs:
             row = bench(week, jobs, args.n, args.kind, args.sandbox)
             missing = "" if row["graded"] == row["n"] else f"  (only {row['graded']} graded)"
             print(f"{row['week']:>4} {row['jobs']:>4} {row['n']:>4} {row['seconds']:>8.1f} "
-                  f"{row['per_minute']:>9.1f} {row['grade_s']:>8.2f} {row['overhead_s']:>10.2f}  "
+                  f"{row['per_minute']:>9.1f} {row['cpu_per_submission']:>9.2f} "
+                  f"{ratio(row['cpu_per_submission'], base.total.cpu):>6.1f} "
+                  f"{row['wall_per_submission']:>10.2f} "
+                  f"{ratio(row['wall_per_submission'], base.total.wall):>6.1f} "
+                  f"{row['grade_s']:>8.2f} {row['overhead_s']:>10.2f}  "
                   f"{','.join(row['isolation'])}{missing}", flush=True)
-    print("grade s: mean wall time of grade_submission (HTML report included) per submission; overhead s: "
+    print("CPU s/sub: CPU seconds of all processes per submission; wall s/sub: the run's wall time per "
+          "submission (with --jobs 2, half a submission's own time); x base: divided by the baseline; "
+          "grade s: mean wall time of grade_submission (HTML report included) per submission; overhead s: "
           "median batch time beyond it (unpacking, pipes, result files; a cold grading process's start-up "
           "counts for its first submission only)")
+    print(load_after_line())
     return 0
 
 
