@@ -1,0 +1,66 @@
+"""Every benchmark prints the machine line, a baseline from the same run and its ratio to it (tiny sizes;
+the figures themselves are never asserted: they depend on the machine and its load)."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+from types import SimpleNamespace
+
+from grader.sandbox import bench as sandbox_bench
+from simiam.bench import baseline_steps, main
+
+ROOT = Path(__file__).resolve().parents[2]
+MACHINE = re.compile(r"^machine: .+ \(\d+ cores.*\), .*Python \d+\.\d+\.\d+; sandbox: .+; "
+                     r"load average before ", re.M)
+LOAD_AFTER = re.compile(r"^load average after ", re.M)
+
+
+def _ratios(text: str, label: str) -> list[float]:
+    return [float(x) for x in re.findall(r"([0-9.]+)x " + label, text)]
+
+
+def test_simiam_bench_prints_machine_baseline_and_ratio(capsys):
+    assert main(SimpleNamespace(json=False, seconds=0.33)) == 0
+    out = capsys.readouterr().out
+    assert MACHINE.search(out) and LOAD_AFTER.search(out)
+    assert "baseline (a step's arithmetic in one flat loop)" in out
+    cpu_ratio = re.search(r"simulator / baseline: ([0-9.]+)x by CPU time \(([0-9.]+)x by wall time\)", out)
+    assert cpu_ratio and float(cpu_ratio.group(1)) > 0 and float(cpu_ratio.group(2)) > 0
+
+
+def test_simiam_bench_baseline_does_the_work():
+    # the checksum depends on the steps run: a loop that skipped its body would return the same for all n
+    assert baseline_steps(10) != baseline_steps(20)
+
+
+def test_sandbox_bench_prints_machine_baselines_and_ratios(capsys):
+    sandbox_bench.main(["--starts", "1", "--calls", "5"])
+    out = capsys.readouterr().out
+    assert MACHINE.search(out) and LOAD_AFTER.search(out)
+    assert re.search(r"^baseline +interpreter start .* echo round trip ", out, re.M)
+    assert _ratios(out, "an interpreter start") and _ratios(out, "the echo round trip")
+
+
+def _script(*args: str) -> str:
+    done = subprocess.run([sys.executable, *args], cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr[-3000:]
+    return done.stdout
+
+
+def test_grade_bench_prints_machine_baseline_and_ratios():
+    out = _script("benchmarks/grade_bench.py", "--repeat", "1", "--weeks", "1", "--cli-week", "1",
+                  "--no-hidden")
+    assert MACHINE.search(out) and LOAD_AFTER.search(out)
+    assert "baseline: python -c 'import grader.grading'" in out and "baseline: bare worker start" in out
+    assert re.search(r"^grade week1 --solutions \(fresh process\): wall .* CPU ", out, re.M)
+    assert len(_ratios(out, "baseline CPU")) == 2  # the fresh process and the warm grade_submission
+
+
+def test_batch_bench_prints_machine_baseline_and_ratios():
+    out = _script("benchmarks/batch_bench.py", "--weeks", "1", "--jobs", "1", "--n", "1")
+    assert MACHINE.search(out) and LOAD_AFTER.search(out)
+    row = re.search(r"^ +1 +1 +1 +[0-9.]+ +[0-9.]+ +([0-9.]+) +([0-9.]+) ", out, re.M)
+    assert row and float(row.group(1)) > 0 and float(row.group(2)) > 0  # CPU s/sub and its ratio
