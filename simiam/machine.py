@@ -136,7 +136,7 @@ class ProcessTreeCPU:
     of 1/CLK_TCK s).
     """
 
-    def __init__(self, interval: float = 0.01) -> None:
+    def __init__(self, interval: float = 0.02) -> None:
         self.interval = interval
         self.seen: dict[tuple[int, str], float] = {}
         self.own_cpu = 0.0  # the sampler thread's own CPU, to be taken off this process's figure
