@@ -120,7 +120,7 @@ def instrument(week: int) -> Timers:
     patch(StudentSession, "load", timers, "worker start and load", worker=True)
     patch(StudentSession, "call", timers, lambda a, k: f"round trip: {a[1]}")
     patch(RemoteBrain, "step", timers, "scenario steps (round trip + command check)")
-    patch(grading, "_splice", timers, "splice (stub generation included)")
+    patch(grading, "_splice", timers, "splice (skeleton check included)")
     patch(grading, "write_outputs", timers, "report: JSON and HTML")
     patch(properties, "run_property", timers, "property checks (all)", worker=True)
     patch(scenarios, "run", timers, "scenario runs (all)", worker=True)
@@ -142,8 +142,8 @@ def print_phases(timers: Timers, wall: float, cpu: float, worker_cpu: float) -> 
     probes, steps = "round trip: probe", "scenario steps (round trip + command check)"
     prop, scen = "property checks (all)", "scenario runs (all)"
     rows = [
-        ("splice (stub generation included)", w["splice (stub generation included)"],
-         c["splice (stub generation included)"], None),
+        ("splice (skeleton check included)", w["splice (skeleton check included)"],
+         c["splice (skeleton check included)"], None),
         ("worker start and load", w["worker start and load"], c["worker start and load"],
          wk["worker start and load"]),
         ("property checks", w[prop], c[prop], wk[prop]),
