@@ -64,3 +64,15 @@ def test_batch_bench_prints_machine_baseline_and_ratios():
     assert MACHINE.search(out) and LOAD_AFTER.search(out)
     row = re.search(r"^ +1 +1 +1 +[0-9.]+ +[0-9.]+ +([0-9.]+) +([0-9.]+) ", out, re.M)
     assert row and float(row.group(1)) > 0 and float(row.group(2)) > 0  # CPU s/sub and its ratio
+
+
+def test_grade_profile_prints_every_phase():
+    # The profile wraps grader functions by name (grading._splice, write_outputs, scenarios.run, ...): a
+    # rename must break this test, not silently drop a row from docs/performance.md's source.
+    out = _script("benchmarks/grade_profile.py", "--week", "2")
+    assert MACHINE.search(out) and LOAD_AFTER.search(out)
+    assert re.search(r"^1\. imports of a fresh `grade week2 --solutions` .*: [0-9.]+ s in all", out, re.M)
+    for row in ("splice (skeleton check included)", "worker start and load", "property checks",
+                "probe round trips", "scenario runs", "report: JSON and HTML", "total grade_submission"):
+        assert re.search(rf"^ +{re.escape(row)} +-?\d+ ", out, re.M), row
+    assert re.search(r"the engine costs -?\d+ us per case", out)
