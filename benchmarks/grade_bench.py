@@ -23,6 +23,7 @@ from pathlib import Path
 from grading_baseline import Baseline, measure_baseline
 
 from grader.grading import grade_submission
+from grader.sandbox.errors import SandboxUnavailable
 from simiam.machine import Stopwatch, Usage, load_after_line, machine_line, median_usage, ratio
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -59,7 +60,11 @@ def main(argv: list[str] | None = None) -> int:
     args = p.parse_args(argv)
     if args.repeat < 1:
         p.error("--repeat must be at least 1")
-    base = measure_baseline(args.sandbox, week=args.cli_week, runs=max(3, args.repeat))
+    try:
+        base = measure_baseline(args.sandbox, week=args.cli_week, runs=max(3, args.repeat))
+    except SandboxUnavailable as exc:
+        print(f"--sandbox {args.sandbox}: {exc}", file=sys.stderr)
+        return 2
     print(machine_line(base.sandbox), flush=True)
     print("\n".join(base.lines()), flush=True)
     runs = [cli_run(args.cli_week, args.sandbox) for _ in range(args.repeat)]

@@ -3,6 +3,7 @@ the figures themselves are never asserted: they depend on the machine and its lo
 
 from __future__ import annotations
 
+import os
 import re
 import subprocess
 import sys
@@ -76,3 +77,12 @@ def test_grade_profile_prints_every_phase():
                 "probe round trips", "scenario runs", "report: JSON and HTML", "total grade_submission"):
         assert re.search(rf"^ +{re.escape(row)} +-?\d+ ", out, re.M), row
     assert re.search(r"the engine costs -?\d+ us per case", out)
+
+
+def test_grade_and_batch_bench_say_when_the_sandbox_asked_for_is_missing():
+    env = dict(os.environ, PATH="/nonexistent")  # no bwrap on PATH; the interpreter is called by path
+    for script in ("benchmarks/grade_bench.py", "benchmarks/batch_bench.py"):
+        done = subprocess.run([sys.executable, script, "--sandbox", "bwrap"], cwd=ROOT, env=env,
+                              capture_output=True, text=True, timeout=120)
+        assert done.returncode == 2, done.stderr[-2000:]
+        assert done.stderr.startswith("--sandbox bwrap: ") and "Traceback" not in done.stderr
