@@ -119,6 +119,11 @@ def _own_cpu(pid: int) -> tuple[str, float] | None:
     return fields[19], (int(fields[11]) + int(fields[12])) / _TICKS
 
 
+def can_follow_children() -> bool:
+    """Whether /proc lists each process's children here (Linux with CONFIG_PROC_CHILDREN)."""
+    return os.path.exists(f"/proc/{os.getpid()}/task/{os.getpid()}/children")
+
+
 def descendants_cpu() -> float:
     """CPU seconds the live descendants of this process have used so far (their own, from /proc)."""
     tree = ProcessTreeCPU()
@@ -181,7 +186,7 @@ class Stopwatch:
     """
 
     def __init__(self, follow_children: bool = True) -> None:
-        self._tree = ProcessTreeCPU() if follow_children and os.path.isdir("/proc/self/task") else None
+        self._tree = ProcessTreeCPU() if follow_children and can_follow_children() else None
 
     def __enter__(self) -> Stopwatch:
         if self._tree is not None:

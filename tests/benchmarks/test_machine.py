@@ -11,7 +11,17 @@ import subprocess
 import sys
 import time
 
-from simiam.machine import Stopwatch, Usage, load_after_line, machine_line, median_usage, ratio
+import pytest
+
+from simiam.machine import (
+    Stopwatch,
+    Usage,
+    can_follow_children,
+    load_after_line,
+    machine_line,
+    median_usage,
+    ratio,
+)
 
 # A child that starts a grandchild burning `burn` CPU seconds, then sleeping; the child prints the
 # grandchild's pid and sleeps. Killing the child with SIGKILL and the grandchild afterwards leaves the
@@ -40,6 +50,7 @@ def test_machine_line_names_cpu_cores_python_sandbox_and_load():
     assert "load average after" in load_after_line()
 
 
+@pytest.mark.skipif(not can_follow_children(), reason="/proc does not list children on this system")
 def test_a_grandchild_killed_with_its_parent_is_counted():
     burn = 0.3
     rusage_before = _reaped_children_cpu()
