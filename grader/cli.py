@@ -6,6 +6,7 @@
     grade week3 --solutions --hidden # the reference solutions, with the instructor's hidden checks
     grade all                        # every week
     grade week3 --batch submissions/ --jobs 4 --out graded/
+    grade handout week3 --out release/   # and: grade package gradescope|prairielearn weekN, grade selfcheck
 
 Exit status: 0 every check passed, 1 some check did not, 2 the command itself could not run.
 """
@@ -24,12 +25,15 @@ from grader.result import all_passed
 from simiam.course.folders import WeekFolderNotFound, week_folder
 
 WEEKS = (1, 2, 3, 4)
+PLATFORM_COMMANDS = ("handout", "package", "selfcheck")   # grader.platforms.cli parses these
 _MARK = {"passed": "ok", "failed": "FAIL", "error": "ERROR", "timeout": "TIMEOUT"}
 
 
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
-        prog="grade", description="Grade a Control of Mobile Robots (QuickBot) assignment."
+        prog="grade", description="Grade a Control of Mobile Robots (QuickBot) assignment.",
+        epilog="Instructors: grade handout weekN, grade package gradescope|prairielearn weekN, "
+               "grade selfcheck (grade handout --help, ...; see docs/platforms.md).",
     )
     p.add_argument("week", help="week1 .. week4, or all")
     p.add_argument("path", nargs="?", default=None, help="submission folder (default: the current folder "
@@ -159,6 +163,11 @@ def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the `grade` console script."""
+    argv = sys.argv[1:] if argv is None else argv
+    if argv and argv[0] in PLATFORM_COMMANDS:
+        from grader.platforms.cli import main as platforms_main
+
+        return platforms_main(argv)
     parser = _parser()
     args = parser.parse_args(argv)
     try:

@@ -1,0 +1,119 @@
+"""Official grading on a platform: the secret baked into a bundle, and one upload graded with it.
+
+A bundle (Gradescope zip, PrairieLearn image) carries two files besides the package:
+
+- ``config.json`` (public): the week, how hidden checks are shown, and what the bundle was built from;
+- ``secret/`` (root-only: the folder 0700, its files 0600): ``grading.json`` with the course's secret seed,
+  and ``hidden/weekN.json``, the week's hidden variant set.
+
+The grading process reads the secret as root. Student code never can: in the bubblewrap sandbox the folder
+is simply not there (only /usr, the Python environment and the spliced submission are bound), and without
+bubblewrap the worker drops to a dedicated unprivileged uid, for which a 0700 root folder is closed. Where
+the grader itself does not run as root (a local trial), the worker keeps the grader's uid and *could* read
+the secret; `isolation_note` in every result says which case held.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import stat
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from grader.batch.zips import SubmissionRefused
+from grader.platforms.intake import collect
+
+SECRET_FORMAT = "simiam-secret/1"
+CONFIG_FORMAT = "simiam-bundle/1"
+GRADESCOPE_VISIBILITY = ("hidden", "after_due_date", "after_published", "visible")
+
+
+class BundleBroken(RuntimeError):
+    """The bundle's own files are missing or unreadable: an instructor's problem, never a student's."""
+
+
+@dataclass(frozen=True)
+class Secret:
+    """What official grading needs and students must not see."""
+
+    week: int
+    seed: int
+    hidden_dir: Path
+
+
+def write_secret(folder: Path, week: int, seed: int, hidden_file: Path | None) -> Path:
+    """Write `folder`/grading.json and `folder`/hidden/weekN.json (a copy of `hidden_file`), owner-only."""
+    hidden = folder / "hidden"
+    hidden.mkdir(parents=True, exist_ok=True)
+    (folder / "grading.json").write_text(
+        json.dumps({"format": SECRET_FORMAT, "week": week, "seed": seed}, indent=1), encoding="utf-8")
+    if hidden_file is not None:
+        (hidden / f"week{week}.json").write_bytes(hidden_file.read_bytes())
+    lock_down(folder)
+    return folder
+
+
+def lock_down(folder: Path) -> None:
+    """Folders 0700 and files 0600 under `folder`: readable only by their owner (root on a platform)."""
+    for path in [folder, *folder.rglob("*")]:
+        path.chmod(0o700 if path.is_dir() else 0o600)
+
+
+def read_secret(folder: Path) -> Secret:
+    """The secret of a bundle; BundleBroken when it is missing, malformed, or readable by others."""
+    path = folder / "grading.json"
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+        mode = stat.S_IMODE(folder.stat().st_mode) | stat.S_IMODE(path.stat().st_mode)
+    except (OSError, ValueError) as exc:
+        raise BundleBroken(f"the bundle's secret {path} cannot be read ({exc})") from None
+    if not isinstance(data, dict) or data.get("format") != SECRET_FORMAT:
+        raise BundleBroken(f"{path} is not a {SECRET_FORMAT} file")
+    if mode & 0o077:
+        raise BundleBroken(f"{folder} is readable by other users (mode {oct(mode)}): run setup again, or "
+                           f"chmod -R go-rwx {folder}")
+    week, seed = data.get("week"), data.get("seed")
+    if type(week) is not int or type(seed) is not int:
+        raise BundleBroken(f"{path}: week and seed must be integers")
+    return Secret(week, seed, folder / "hidden")
+
+
+def read_config(path: Path) -> dict:
+    """The bundle's public config.json."""
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise BundleBroken(f"the bundle's {path} cannot be read ({exc})") from None
+    if not isinstance(data, dict) or data.get("format") != CONFIG_FORMAT:
+        raise BundleBroken(f"{path} is not a {CONFIG_FORMAT} file")
+    return data
+
+
+def grade_upload(upload: Path, secret: Secret) -> dict:
+    """Grade the upload folder of one student with the bundle's seed and hidden set (every check).
+
+    Returns the contract's result; a refused upload (no course files, hostile zip, ...) raises
+    SubmissionRefused with the reason to show the student."""
+    from grader.grading import grade_submission
+
+    # The hidden checks read their data from $SIMIAM_HIDDEN: point it at the secret, never the package.
+    os.environ["SIMIAM_HIDDEN"] = str(secret.hidden_dir)
+    with tempfile.TemporaryDirectory(prefix="simiam-upload-") as tmp:
+        folder = collect(upload, secret.week, Path(tmp) / f"week{secret.week}")
+        result = grade_submission(secret.week, folder, seed=secret.seed, hidden=True, sandbox="auto")
+    result["submission"] = "your upload"     # not the grader's temporary path
+    return result
+
+
+def cap(text: object, limit: int) -> str:
+    """Text cut to `limit` characters, saying so (student output and messages are attacker-sized)."""
+    text = "" if text is None else str(text)
+    if len(text) <= limit:
+        return text
+    return text[: limit - 40] + f"\n... [{len(text) - limit + 40} characters cut]"
+
+
+__all__ = ["BundleBroken", "Secret", "SubmissionRefused", "cap", "grade_upload", "lock_down", "read_config",
+           "read_secret", "write_secret"]
