@@ -91,8 +91,9 @@ def read_config(path: Path) -> dict:
     return data
 
 
-def grade_upload(upload: Path, secret: Secret) -> dict:
+def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None) -> dict:
     """Grade the upload folder of one student with the bundle's seed and hidden set (every check).
+    Course files missing from the upload are taken from `fill_from` (the handout) when it is given.
 
     Returns the contract's result; a refused upload (no course files, hostile zip, ...) raises
     SubmissionRefused with the reason to show the student."""
@@ -102,6 +103,10 @@ def grade_upload(upload: Path, secret: Secret) -> dict:
     os.environ["SIMIAM_HIDDEN"] = str(secret.hidden_dir)
     with tempfile.TemporaryDirectory(prefix="simiam-upload-") as tmp:
         folder = collect(upload, secret.week, Path(tmp) / f"week{secret.week}")
+        if fill_from is not None:
+            for path in sorted(fill_from.glob("*.py")):
+                if not (folder / path.name).exists():
+                    (folder / path.name).write_bytes(path.read_bytes())
         result = grade_submission(secret.week, folder, seed=secret.seed, hidden=True, sandbox="auto")
     result["submission"] = "your upload"     # not the grader's temporary path
     return result
