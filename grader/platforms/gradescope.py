@@ -139,7 +139,7 @@ def summary_html(result: dict, config: dict) -> str:
         lines.append("Note: " + esc(cap(note, 500)))
     isolation = result.get("isolation")
     if isolation:
-        lines.append(f"Isolation: {esc(str(isolation))}. {esc(cap(result.get('isolation_note'), 600))}")
+        lines.append(f"Isolation ({esc(str(isolation))}): {esc(cap(result.get('isolation_note'), 600))}")
     printed = result.get("student_output")
     if printed:
         lines.append("What your code printed (the end of it):<pre>" + esc(cap(printed, 2000)) + "</pre>")
