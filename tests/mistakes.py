@@ -1,124 +1,29 @@
 """Wrong versions kept as mistakes: a unified diff against solutions/weekN, applied to a fresh copy per test.
 
-`tests/data/<kind>/<name>.patch` (a kind of KINDS below) starts with one `# ...` line saying
-what the mistake is, then a unified diff whose paths name the solution file it changes
-(`--- a/solutions/week3/go_to_goal.py`). The applier is strict: every hunk's old lines must stand in the
-file exactly (at the stated line, or else at exactly one other place), or `MistakeError` says which file and
-hunk no longer fit, so that a change to solutions/ cannot silently leave a wrong version behind.
+`tests/data/<kind>/<name>.patch` (a kind of KINDS below) is in the format of
+grader.platforms.wrong_versions: a `# <name>: what the mistake is` line, an optional `# aims:` line, then a
+unified diff against solutions/weekN, applied strictly.
 A `tests/data/<kind>/<name>/` folder instead holds hand-written files laid over the solution as they are.
 """
 
 from __future__ import annotations
 
-import re
 import shutil
-from dataclasses import dataclass, field
 from pathlib import Path
+
+# The format, the parser and the strict applier live with `grade selfcheck`, which applies the course's
+# wrong versions too; this module finds the tests' mistakes and builds them.
+from grader.platforms.wrong_versions import (  # noqa: F401 (re-exported for the tests)
+    Hunk,
+    Mistake,
+    MistakeError,
+    apply_hunks,
+    read_mistake,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "tests" / "data"
-_HUNK = re.compile(r"@@ -(\d+)(?:,(\d+))? \+(\d+)(?:,(\d+))? @@")
 KINDS = ("wrong", "submissions", "stuck", "attacks/graded")
-_PATH = re.compile(r"[ab]/solutions/week(\d)/([\w.]+)$")
-
-
-class MistakeError(Exception):
-    """A mistake that cannot be read or no longer applies to the current solutions."""
-
-
-@dataclass
-class Hunk:
-    header: str
-    old_start: int
-    old: list[str] = field(default_factory=list)
-    new: list[str] = field(default_factory=list)
-
-
-@dataclass
-class Mistake:
-    """One wrong version: what it is, the solution week it changes, and the hunks per file."""
-
-    why: str
-    week: int
-    files: dict[str, list[Hunk]]
-
-
-def read_mistake(path: Path) -> Mistake:
-    """Parse a `.patch` file (the title line, then a unified diff against solutions/weekN)."""
-    lines = path.read_text().splitlines(keepends=True)
-    if not lines or not lines[0].startswith("# "):
-        raise MistakeError(f"{path}: the first line must be '# <what the mistake is>'")
-    why = lines[0][2:].strip()
-    week: int | None = None
-    files: dict[str, list[Hunk]] = {}
-    hunks: list[Hunk] = []
-    k = 1
-    while k < len(lines):
-        line = lines[k]
-        if line.startswith("--- "):
-            old_path = _PATH.match(line[4:].strip())
-            new_line = lines[k + 1] if k + 1 < len(lines) else ""
-            new_path = _PATH.match(new_line[4:].strip()) if new_line.startswith("+++ ") else None
-            if not old_path or not new_path or old_path.groups() != new_path.groups():
-                raise MistakeError(f"{path}:{k + 1}: want '--- a/solutions/weekN/F' then '+++ b/(same)'")
-            if week is not None and int(old_path[1]) != week:
-                raise MistakeError(f"{path}:{k + 1}: all files of one mistake must come from one week")
-            week, name = int(old_path[1]), old_path[2]
-            if name in files:
-                raise MistakeError(f"{path}:{k + 1}: {name} appears twice")
-            hunks = files[name] = []
-            k += 2
-        elif line.startswith("@@"):
-            head = _HUNK.match(line)
-            if not head or week is None:
-                raise MistakeError(f"{path}:{k + 1}: bad hunk header {line.strip()!r}")
-            hunk = Hunk(line.strip(), int(head[1]))
-            want_old = int(head[2]) if head[2] is not None else 1
-            want_new = int(head[4]) if head[4] is not None else 1
-            k += 1
-            while len(hunk.old) < want_old or len(hunk.new) < want_new:
-                if k == len(lines) or lines[k][:1] not in (" ", "-", "+"):
-                    raise MistakeError(f"{path}: hunk {hunk.header} ends before its {want_old} old and "
-                                       f"{want_new} new lines")
-                if lines[k][0] in " -":
-                    hunk.old.append(lines[k][1:])
-                if lines[k][0] in " +":
-                    hunk.new.append(lines[k][1:])
-                k += 1
-            if (len(hunk.old), len(hunk.new)) != (want_old, want_new):
-                raise MistakeError(f"{path}: hunk {hunk.header} does not have {want_old} old and {want_new} "
-                                   f"new lines")
-            hunks.append(hunk)
-        elif line.startswith("\\"):
-            raise MistakeError(f"{path}:{k + 1}: files without a final newline are not supported")
-        else:
-            raise MistakeError(f"{path}:{k + 1}: unexpected line {line.rstrip()!r}")
-    if week is None or not all(files.values()):
-        raise MistakeError(f"{path}: no hunks")
-    return Mistake(why, week, files)
-
-
-def apply_hunks(text: str, hunks: list[Hunk], where: str) -> str:
-    """`text` with the hunks applied in order. Each hunk's old lines must stand at its stated line or, failing
-    that, exactly once after the previous hunk; otherwise MistakeError names `where` and the hunk."""
-    lines = text.splitlines(keepends=True)
-    out: list[str] = []
-    pos = 0  # lines of `lines` already consumed
-    for hunk in hunks:
-        n = len(hunk.old)
-        stated = hunk.old_start - 1 if n else hunk.old_start  # a pure insertion names the line before it
-        if lines[stated:stated + n] == hunk.old and stated >= pos:
-            at = stated
-        else:
-            found = [i for i in range(pos, len(lines) - n + 1) if lines[i:i + n] == hunk.old]
-            if len(found) != 1:
-                how = "not found" if not found else f"found {len(found)} times"
-                raise MistakeError(f"{where}: hunk {hunk.header} does not apply (its old lines are {how}); "
-                                   f"the solution changed: rewrite the mistake against it")
-            at = found[0]
-        out += lines[pos:at] + hunk.new
-        pos = at + n
-    return "".join(out + lines[pos:])
 
 
 def mistake_path(kind: str, name: str) -> Path:

@@ -1,0 +1,82 @@
+"""`grade selfcheck` passes on the course as it is and fails, naming the problem, when a solution loses
+points, a stub scores, or a wrong version does not lose exactly its aimed checks; the CI workflow for an
+instructor's repository runs it."""
+
+from __future__ import annotations
+
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+from mistakes import DATA, ROOT, build, read_mistake
+
+from grader.cli import main
+from grader.platforms.selfcheck import Expectation, check_one, full_marks, run_selfcheck, zero_points
+
+sys.path.insert(0, str(ROOT / "tests" / "grader"))
+from test_checks_fail import EXPECTED_FAILURES  # noqa: E402
+
+
+@pytest.mark.slow
+def test_the_course_passes_its_selfcheck_for_week3():
+    lines: list[str] = []
+    assert run_selfcheck(ROOT, [3], out=lines.append) == 0
+    assert lines[-1] == "selfcheck: all expectations held"
+    assert any(ln.startswith("ok    solutions week3 (hidden checks included)") for ln in lines)
+    assert any(ln.startswith("ok    stubs week3 (zero on every coded part)") for ln in lines)
+    week3 = [p for p in (DATA / "wrong").glob("*.patch") if read_mistake(p).week == 3]
+    assert len(week3) >= 7 and sum(ln.startswith("ok    wrong ") for ln in lines) == len(week3)
+
+
+@pytest.mark.slow
+def test_wrong_versions_with_a_wrong_aim_no_aim_or_a_stale_patch_fail_it(tmp_path: Path):
+    wrong = tmp_path / "wrong"
+    wrong.mkdir()
+    text = (DATA / "wrong" / "week3_no_wrap.patch").read_text().splitlines(keepends=True)
+    (wrong / "misaimed.patch").write_text("".join([text[0], "# aims: week3.pid.integral\n", *text[2:]]))
+    (wrong / "unaimed.patch").write_text("".join([text[0], *text[2:]]))
+    stale = "".join(text).replace("-        e_k = math.atan2", "-        e_k = atan2")
+    (wrong / "stale.patch").write_text(stale)
+    lines: list[str] = []
+    assert run_selfcheck(ROOT, [3], wrong=wrong, out=lines.append) == 1
+    text = "\n".join(lines)
+    assert "FAIL  wrong misaimed (loses week3.pid.integral): keeps the points of week3.pid.integral it " \
+           "aims at; also loses week3.go_to_goal.error_wrap" in text
+    assert "FAIL  wrong unaimed: no '# aims:' line" in text
+    assert "FAIL  wrong stale: " in text and "does not apply" in text
+    assert lines[-1] == "selfcheck: 3 failed"
+
+
+def test_a_solution_that_loses_points_or_a_stub_that_scores_fails(tmp_path: Path):
+    lines: list[str] = []
+    solution = tmp_path / "solution"
+    shutil.copytree(ROOT / "solutions" / "week2", solution)
+    wrong = build("wrong", "week2_full_L", tmp_path)
+    assert check_one(Expectation("solutions week2", 2, wrong, False, full_marks), 2014, lines.append) == 1
+    assert check_one(Expectation("stubs week2", 2, solution, False, zero_points), 2014, lines.append) == 1
+    assert lines[0].startswith("FAIL  solutions week2: lost week2.uni_to_diff.round_trip")
+    assert lines[1].startswith("FAIL  stubs week2: the stub scores on ")
+
+
+def test_every_kept_wrong_version_declares_the_aims_the_grader_tests_expect():
+    aims = {p.stem: read_mistake(p).aims for p in sorted((DATA / "wrong").glob("*.patch"))}
+    assert aims == {name: frozenset(ids) for name, ids in EXPECTED_FAILURES.items()}
+
+
+def test_selfcheck_refuses_a_course_the_grader_was_not_installed_from(tmp_path: Path, capsys):
+    (tmp_path / "solutions" / "week1").mkdir(parents=True)
+    assert main(["selfcheck", "--course", str(tmp_path)]) == 2
+    assert "pip install -e" in capsys.readouterr().err
+
+
+def test_the_ci_workflow_installs_the_checkout_and_runs_the_selfcheck():
+    workflow = yaml.safe_load((ROOT / "docs" / "ci-selfcheck.yml").read_text())
+    steps = workflow["jobs"]["selfcheck"]["steps"]
+    runs = [s.get("run", "") for s in steps]
+    assert any("pip install -e ." in r for r in runs)
+    assert any(r.strip() == "grade selfcheck" for r in runs)
+    assert any("simiam.course.stubs --check" in r for r in runs)
+    assert any("grade handout" in r for r in runs)
+    assert steps[0]["uses"].startswith("actions/checkout@")
