@@ -53,14 +53,15 @@ class Autograder:
     def env(self, **extra: str) -> dict[str, str]:
         return {**base_env(), "AUTOGRADER_ROOT": str(self.root), "SIMIAM_VENV": str(self.venv), **extra}
 
-    def grade(self, fill) -> tuple[dict, str]:
-        """Empty submission/ and results/, let `fill(submission_folder)` upload, run run_autograder."""
+    def grade(self, fill, **env: str) -> tuple[dict, str]:
+        """Empty submission/ and results/, let `fill(submission_folder)` upload, run run_autograder (with
+        `env` on top of the platform's environment)."""
         for part in ("submission", "results"):
             shutil.rmtree(self.root / part, ignore_errors=True)
             (self.root / part).mkdir()
         fill(self.root / "submission")
-        done = subprocess.run([str(self.root / "source" / "run_autograder")], env=self.env(), cwd=self.root,
-                              capture_output=True, text=True, timeout=600)
+        done = subprocess.run([str(self.root / "source" / "run_autograder")], env=self.env(**env),
+                              cwd=self.root, capture_output=True, text=True, timeout=600)
         assert done.returncode == 0, done.stdout + done.stderr
         text = (self.root / "results" / "results.json").read_text()
         return json.loads(text), done.stdout + done.stderr

@@ -151,3 +151,22 @@ def test_the_spec_validator_catches_what_gradescope_rejects(broken: dict):
 def _loose(source: Path, folder: Path) -> None:
     for path in sorted(source.glob("*.py")):
         shutil.copy(path, folder / path.name)
+
+
+def test_without_bubblewrap_the_result_says_so_and_the_secret_stays_closed(autograder, tmp_path):
+    # an image where bubblewrap is missing: the PATH run_autograder sees has no bwrap
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    for tool in ("bash", "mkdir", "env", "printf"):
+        found = shutil.which(tool)
+        if found:
+            (bin_dir / tool).symlink_to(found)
+    attack = build("attacks/graded", "platform_secret", tmp_path)
+    secret = str(autograder.root / "source" / "secret")
+    code = (attack / "go_to_goal.py").read_text().replace("__SECRET__", secret)
+    (attack / "go_to_goal.py").write_text(code.replace("__RESULTS__", str(autograder.root / "results")))
+    results, log = autograder.grade(lambda folder: _loose(attack, folder), PATH=str(bin_dir))
+    assert gradescope_violations(results) == []
+    assert "Isolation (subprocess)" in results["output"] and "no bubblewrap" in results["output"]
+    assert _tests(results)["week3.go_to_goal.theta_g"]["status"] == "failed", "student code read the secret"
+    assert str(SEED) not in json.dumps(results) and str(SEED) not in log
