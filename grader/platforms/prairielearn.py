@@ -4,16 +4,20 @@
 
 writes
 
-    pl-week3/question/   -> copy to <course>/questions/simiam_week3/: info.json (externalGradingOptions),
-                            question.html (one file editor per file with code blocks), starter/*.py
-    pl-week3/image/      -> `docker build -t NAME pl-week3/image`: Dockerfile (Debian + this package),
-                            the wheel, config.json, secret/ (seed and hidden set, root-only in the image),
-                            simiam-pl-grade (the entrypoint)
+    pl-week3/question/           -> <course>/questions/simiam_week3/: info.json (externalGradingOptions),
+                                    question.html (one file editor per file with code blocks), starter/*.py
+    pl-week3/serverFilesCourse/  -> <course>/serverFilesCourse/: simiam_week3/ (the secret seed and the
+                                    week's hidden set; students never see serverFilesCourse)
+    pl-week3/image/              -> `docker build -t NAME pl-week3/image`: Dockerfile (Debian + this
+                                    package), the wheel, config.json, the handout, simiam-pl-grade
 
-At grading time the entrypoint runs `python -m grader.platforms.prairielearn run --root /grade`: it grades
-/grade/student and writes /grade/results/results.json in PrairieLearn's format: `score` in 0..1, one test
-per check (name, description, points, max_points, message), `gradable: false` with `format_errors` when
-nothing could be graded, and never more than PrairieLearn's 1 MB.
+The image holds nothing secret, so it may be public (PrairieLearn pulls it from a registry); the seed and
+the hidden set travel in the course repository's serverFilesCourse, which PrairieLearn copies to
+/grade/serverFilesCourse/simiam_weekN for each job. The entrypoint closes that folder to every user but root
+before any student code runs, then runs `python -m grader.platforms.prairielearn run --root /grade`: it
+grades /grade/student and writes /grade/results/results.json in PrairieLearn's format: `score` in 0..1, one
+test per check (name, description, points, max_points, message), `gradable: false` with `format_errors`
+when nothing could be graded, and never more than PrairieLearn's 1 MB.
 """
 
 from __future__ import annotations
@@ -36,6 +40,7 @@ from grader.platforms.official import (
     SubmissionRefused,
     cap,
     grade_upload,
+    lock_down,
     read_config,
     read_secret,
 )
@@ -63,6 +68,9 @@ def build(week: int, out: Path, course: Path, seed: int, image: str | None = Non
         wheel, config = stage_common(week, course, seed, "hidden", img)
         shutil.move(str(wheel), img / wheel.name)
         (img / "dist").rmdir()
+        shared = f"simiam_week{week}"
+        (stage / "serverFilesCourse").mkdir()
+        shutil.move(str(img / "secret"), stage / "serverFilesCourse" / shared)
         dockerfile = (TEMPLATES / "prairielearn_Dockerfile").read_text(encoding="utf-8")
         (img / "Dockerfile").write_text(dockerfile.format(week=week, image=image, wheel=wheel.name),
                                         encoding="utf-8")
@@ -79,8 +87,9 @@ def build(week: int, out: Path, course: Path, seed: int, image: str | None = Non
                 "title": f"Week {week}: {_title(readme)}", "topic": "QuickBot programming assignments",
                 "tags": ["simiam", f"week{week}"], "type": "v3", "singleVariant": True,
                 "gradingMethod": "External",
-                "externalGradingOptions": {"enabled": True, "image": image, "timeout": timeout,
-                                           "entrypoint": "/usr/local/bin/simiam-pl-grade"}}
+                "externalGradingOptions": {
+                    "enabled": True, "image": image, "timeout": timeout, "serverFilesCourse": [f"{shared}/"],
+                    "entrypoint": f"/usr/local/bin/simiam-pl-grade /grade/serverFilesCourse/{shared}"}}
         (question / "info.json").write_text(json.dumps(info, indent=2) + "\n", encoding="utf-8")
         env = jinja2.Environment(loader=jinja2.FileSystemLoader(TEMPLATES), autoescape=True,
                                  keep_trailing_newline=True)
@@ -88,7 +97,7 @@ def build(week: int, out: Path, course: Path, seed: int, image: str | None = Non
             week=week, title=_title(readme), files=editable, hidden=config["hidden_checks"] > 0)
         (question / "question.html").write_text(page, encoding="utf-8")
         out.mkdir(parents=True, exist_ok=True)
-        for part in ("question", "image"):
+        for part in ("question", "serverFilesCourse", "image"):
             shutil.move(str(stage / part), out / part)
     config.update(image=image, files=editable)
     return config
@@ -145,12 +154,15 @@ def fit(payload: dict, limit: int = MAX_RESULTS_BYTES) -> str:
     return json.dumps(not_gradable("the grading results were too large to report"))
 
 
-def run(root: Path, home: Path) -> int:
-    """Grade root/student into root/results/results.json with the bundle in `home`. Never raises."""
+def run(root: Path, home: Path, secret_dir: Path) -> int:
+    """Grade root/student into root/results/results.json with the image's files in `home` and the secret in
+    `secret_dir` (closed to everyone but root first). Never raises."""
     out = root / "results" / "results.json"
     try:
         read_config(home / "config.json")
-        secret = read_secret(home / "secret")
+        if secret_dir.is_dir():
+            lock_down(secret_dir)      # a git checkout keeps no modes: close it before student code runs
+        secret = read_secret(secret_dir)
         try:
             payload = results_json(grade_upload(root / "student", secret, fill_from=home / "starter"))
         except SubmissionRefused as refused:
@@ -166,13 +178,14 @@ def run(root: Path, home: Path) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """`python -m grader.platforms.prairielearn run --root /grade --home /opt/simiam` (the entrypoint)."""
+    """`python -m grader.platforms.prairielearn run --root /grade --home /opt/simiam --secret DIR`."""
     p = argparse.ArgumentParser(prog="python -m grader.platforms.prairielearn")
     p.add_argument("what", choices=("run",))
     p.add_argument("--root", type=Path, default=Path("/grade"))
     p.add_argument("--home", type=Path, default=Path("/opt/simiam"))
+    p.add_argument("--secret", type=Path, required=True, help="the folder with grading.json")
     args = p.parse_args(argv)
-    return run(args.root, args.home)
+    return run(args.root, args.home, args.secret)
 
 
 if __name__ == "__main__":

@@ -46,14 +46,27 @@ def pl(tmp_path_factory) -> Question:
     return Question(out)
 
 
+def _entrypoint(pl: Question) -> list[str]:
+    return json.loads((pl.question / "info.json").read_text())["externalGradingOptions"]["entrypoint"].split()
+
+
 def _grade(pl: Question, autograder, tmp_path: Path, fill) -> tuple[str, str]:
+    """A /grade-like tree as PrairieLearn lays it out for one job, then the entrypoint of info.json."""
     root = tmp_path / "grade"
     (root / "student").mkdir(parents=True)
     fill(root / "student")
+    shared = root / "serverFilesCourse"
+    shutil.copytree(pl.out / "serverFilesCourse", shared)
+    for path in [shared, *shared.rglob("*")]:          # as a git checkout leaves them: readable by all
+        path.chmod(0o755 if path.is_dir() else 0o644)
+    command, secret = _entrypoint(pl)
+    assert command == "/usr/local/bin/simiam-pl-grade" and secret.startswith("/grade/serverFilesCourse/")
     env = {**base_env(), "GRADE_ROOT": str(root), "SIMIAM_HOME": str(pl.image),
            "SIMIAM_VENV": str(autograder.venv)}
-    done = subprocess.run([str(pl.image / "simiam-pl-grade")], env=env, capture_output=True, text=True,
-                          timeout=600)
+    done = subprocess.run([str(pl.image / "simiam-pl-grade"), str(root) + secret.removeprefix("/grade")],
+                          env=env, capture_output=True, text=True, timeout=600)
+    locked = root / secret.removeprefix("/grade/")
+    assert locked.stat().st_mode & 0o077 == 0 and (locked / "grading.json").stat().st_mode & 0o077 == 0
     assert done.returncode == 0, done.stdout + done.stderr
     return (root / "results" / "results.json").read_text(), done.stdout + done.stderr
 
@@ -75,8 +88,9 @@ def test_info_json_enables_external_grading_with_the_image_and_entrypoint(pl: Qu
     assert 0 < options["timeout"] <= 600
     dockerfile = (pl.image / "Dockerfile").read_text()
     assert re.search(r"^FROM debian:", dockerfile, re.M)
-    assert f'ENTRYPOINT ["{options["entrypoint"]}"]' in dockerfile
-    assert f"COPY simiam-pl-grade {options['entrypoint']}" in dockerfile
+    assert f"ENTRYPOINT {json.dumps(options['entrypoint'].split())}" in dockerfile
+    assert f"COPY simiam-pl-grade {options['entrypoint'].split()[0]}" in dockerfile
+    assert options["serverFilesCourse"] == ["simiam_week3/"]
     for source in re.findall(r"^COPY (\S+) ", dockerfile, re.M):
         assert (pl.image / source).exists(), f"the Dockerfile copies {source}, which is not in image/"
 
@@ -93,9 +107,11 @@ def test_the_page_has_a_file_editor_with_the_handout_for_each_file_with_blocks(p
     assert leaks(3, starter, ROOT) == []
 
 
-def test_the_secret_in_the_image_folder_is_owner_only(pl: Question):
-    assert (pl.image / "secret").stat().st_mode & 0o077 == 0
-    assert all(p.stat().st_mode & 0o077 == 0 for p in (pl.image / "secret").rglob("*"))
+def test_the_image_holds_no_secret_the_course_files_do(pl: Question):
+    assert not (pl.image / "secret").exists()
+    assert not any(str(SEED) in p.read_text(errors="replace") for p in pl.image.rglob("*") if p.is_file())
+    secret = json.loads((pl.out / "serverFilesCourse" / "simiam_week3" / "grading.json").read_text())
+    assert secret["seed"] == SEED and secret["week"] == 3
 
 
 @pytest.mark.slow
@@ -138,7 +154,8 @@ def test_an_unreadable_submission_is_not_gradable(pl, autograder, tmp_path, uplo
 @pytest.mark.sandbox
 def test_a_hostile_submission_cannot_read_the_secret_nor_forge_the_results(pl, autograder, tmp_path):
     attack = build("attacks/graded", "platform_secret", tmp_path)
-    code = (attack / "go_to_goal.py").read_text().replace("__SECRET__", str(pl.image / "secret"))
+    code = (attack / "go_to_goal.py").read_text()
+    code = code.replace("__SECRET__", str(tmp_path / "grade" / "serverFilesCourse" / "simiam_week3"))
     (attack / "go_to_goal.py").write_text(code.replace("__RESULTS__", str(tmp_path / "grade" / "results")))
     text, log = _grade(pl, autograder, tmp_path, _edited(attack))
     assert prairielearn_violations(text) == []
