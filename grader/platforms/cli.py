@@ -102,7 +102,4 @@ def _package(args: argparse.Namespace, course: Path) -> int:
           f"max score {config['max_score']:g}; wheel {config['wheel']}")
     if args.seed is None:
         print(f"  secret seed {seed} (keep it to rebuild the same grading: --seed {seed})")
-    for name in config.get("wheel_answers") or []:
-        print(f"  warning: the wheel holds {name}; setup removes it from the installed environment, "
-              "but students who get this wheel would have it")
     return 0

@@ -39,6 +39,7 @@ from grader.platforms.official import (
     SubmissionRefused,
     cap,
     grade_upload,
+    installed_answers,
     read_config,
     read_secret,
     write_secret,
@@ -82,11 +83,14 @@ def stage_common(week: int, course: Path, seed: int, hidden_visibility: str, int
     from grader.hidden import hidden_dir
 
     wheel = build_wheel(course, into / "dist")
+    answers = answers_in(wheel)
+    if answers:
+        raise ValueError(f"the wheel built from {course} holds answers ({', '.join(answers[:5])}): a bundle "
+                         "must not ship them; fix the package data in pyproject.toml")
     hidden = hidden_dir() / f"week{week}.json"
     secret = write_secret(into / "secret", week, seed, hidden if hidden.is_file() else None)
     config = build_config(week, hidden_visibility, secret / "hidden")
     config["wheel"] = wheel.name
-    config["wheel_answers"] = answers_in(wheel)
     (into / "config.json").write_text(json.dumps(config, indent=1), encoding="utf-8")
     return wheel, config
 
@@ -200,6 +204,10 @@ def check(root: Path) -> int:
         secret = read_secret(root / "source" / "secret")
     except BundleBroken as exc:
         print(f"setup: {exc}", file=sys.stderr)
+        return 1
+    answers = installed_answers()
+    if answers:
+        print(f"setup: the installed package holds answers ({', '.join(answers[:5])})", file=sys.stderr)
         return 1
     works, why = bwrap_works()
     print(f"setup: week {secret.week}, {config['checks']} checks ({config['hidden_checks']} hidden, shown "

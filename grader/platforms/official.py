@@ -112,6 +112,30 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None) ->
     return result
 
 
+def installed_answers() -> list[str]:
+    """Files of the installed simiam distribution that would give answers away (a hidden variant set, a
+    reference solution): student code can read the environment, so a bundle refuses to run with them."""
+    from importlib.metadata import PackageNotFoundError, files
+
+    try:
+        shipped = [str(f) for f in files("simiam") or []]
+    except PackageNotFoundError:
+        return []
+    return [f for f in shipped if f.startswith(("solutions/", "instructor_tools/"))
+            or (f.startswith("grader/hidden/") and f.endswith(".json"))]
+
+
+def main(argv: list[str] | None = None) -> int:
+    """`python -m grader.platforms.official --check-installed`: exit 1 if the installed package holds
+    answers (the PrairieLearn image runs this while it is built)."""
+    import sys
+
+    answers = installed_answers()
+    for name in answers:
+        print(f"the installed package holds {name}", file=sys.stderr)
+    return 1 if answers else 0
+
+
 def cap(text: object, limit: int) -> str:
     """Text cut to `limit` characters, saying so (student output and messages are attacker-sized)."""
     text = "" if text is None else str(text)
@@ -119,6 +143,9 @@ def cap(text: object, limit: int) -> str:
         return text
     return text[: limit - 40] + f"\n... [{len(text) - limit + 40} characters cut]"
 
+
+if __name__ == "__main__":
+    raise SystemExit(main())
 
 __all__ = ["BundleBroken", "Secret", "SubmissionRefused", "cap", "grade_upload", "lock_down", "read_config",
            "read_secret", "write_secret"]

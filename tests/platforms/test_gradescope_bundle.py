@@ -12,7 +12,7 @@ import zipfile
 from pathlib import Path
 
 import pytest
-from conftest import SEED, WHEEL_GRADES_ALONE
+from conftest import SEED
 from mistakes import ROOT, build
 from platform_specs import gradescope_violations
 
@@ -40,7 +40,8 @@ def test_setup_installs_the_wheel_and_leaves_the_secret_to_root(autograder):
     source = autograder.root / "source"
     assert stat.S_IMODE((source / "secret").stat().st_mode) == 0o700
     assert stat.S_IMODE((source / "secret" / "grading.json").stat().st_mode) == 0o600
-    assert not list(autograder.venv.rglob("grader/hidden/*.json")), "a copy of the hidden set is readable"
+    assert not list(autograder.venv.rglob("hidden/*.json")), "a copy of the hidden set is readable"
+    assert not [p for name in ("solutions", "instructor_tools") for p in autograder.venv.rglob(name)]
     pip = subprocess.run([str(autograder.venv / "bin" / "python"), "-m", "pip", "list", "--format=json"],
                          capture_output=True, text=True, check=True)
     assert any(p["name"] == "simiam" for p in json.loads(pip.stdout))
@@ -49,8 +50,7 @@ def test_setup_installs_the_wheel_and_leaves_the_secret_to_root(autograder):
     site = subprocess.run([str(autograder.venv / "bin" / "python"), "-I", "-c",
                            "import grader, pathlib; print(pathlib.Path(grader.__file__).resolve())"],
                           capture_output=True, text=True, check=True).stdout
-    # the wheel's grader, or (until issue 11 lands) the checkout laid over it by SIMIAM_DEV_CHECKOUT
-    assert site.startswith(str(autograder.venv) if WHEEL_GRADES_ALONE else str(ROOT))
+    assert site.startswith(str(autograder.venv)), "the bundle must grade with the wheel, not this checkout"
 
 
 def test_a_correct_zipped_week_folder_gets_full_marks(autograder, tmp_path):
