@@ -51,6 +51,9 @@ def test_setup_installs_the_wheel_and_leaves_the_secret_to_root(autograder):
                            "import grader, pathlib; print(pathlib.Path(grader.__file__).resolve())"],
                           capture_output=True, text=True, check=True).stdout
     assert site.startswith(str(autograder.venv)), "the bundle must grade with the wheel, not this checkout"
+    check = subprocess.run([str(autograder.venv / "bin" / "python"), "-I", "-m", "grader.platforms.official",
+                            "--check-installed"], capture_output=True, text=True)
+    assert check.returncode == 0, check.stderr
 
 
 def test_a_correct_zipped_week_folder_gets_full_marks(autograder, tmp_path):
@@ -66,6 +69,8 @@ def test_a_correct_zipped_week_folder_gets_full_marks(autograder, tmp_path):
     hidden = [t for t in results["tests"] if t["visibility"] != "visible"]
     assert len(hidden) == 2 and {t["visibility"] for t in hidden} == {"after_published"}
     assert "Isolation (bwrap)" in results["output"] and "graded: 12.5 / 12.5" in log
+    # the installed wheel grades with the very check set (and hidden set) the bundle was built with
+    assert "warning" not in results["extra_data"] and results["extra_data"]["status"] == "graded"
 
 
 def test_a_wrong_version_loses_exactly_its_check(autograder, tmp_path):
