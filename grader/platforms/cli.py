@@ -82,7 +82,7 @@ def main(argv: list[str]) -> int:
 
 
 def _package(args: argparse.Namespace, course: Path) -> int:
-    from grader.platforms.gradescope import new_seed
+    from grader.platforms.bundle import new_seed
 
     seed = args.seed if args.seed is not None else new_seed()
     if args.platform == "gradescope":

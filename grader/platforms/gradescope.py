@@ -19,9 +19,7 @@ from __future__ import annotations
 
 import argparse
 import html
-import json
 import os
-import secrets
 import shutil
 import sys
 import tempfile
@@ -32,9 +30,8 @@ from pathlib import Path
 from grader.batch.exports import gradescope_result
 from grader.batch.store import write_json
 from grader.platforms.archive import write_zip
+from grader.platforms.bundle import stage_common
 from grader.platforms.official import (
-    CONFIG_FORMAT,
-    GRADESCOPE_VISIBILITY,
     BundleBroken,
     SubmissionRefused,
     cap,
@@ -42,57 +39,10 @@ from grader.platforms.official import (
     installed_answers,
     read_config,
     read_secret,
-    write_secret,
 )
-from grader.platforms.wheel import answers_in, build_wheel
 
 TEMPLATES = Path(__file__).with_name("templates")
 MESSAGE_CHARS = 4000        # per test output; Gradescope shows it collapsed, students read the start
-
-
-def new_seed() -> int:
-    """A secret seed for official grading, when the instructor names none."""
-    return secrets.randbelow(2**31)
-
-
-def build_config(week: int, hidden_visibility: str, hidden_dir: Path) -> dict:
-    """The bundle's public config: what it grades and how hidden checks are shown."""
-    from grader.checks import checks_for_week
-    from grader.result import check_set_hash, package_version
-
-    if hidden_visibility not in GRADESCOPE_VISIBILITY:
-        raise ValueError(f"hidden checks' visibility must be one of {', '.join(GRADESCOPE_VISIBILITY)}")
-    checks = checks_for_week(week)
-    before = os.environ.get("SIMIAM_HIDDEN")
-    os.environ["SIMIAM_HIDDEN"] = str(hidden_dir)    # the hash covers the hidden set the bundle carries
-    try:
-        digest = check_set_hash(checks)
-    finally:
-        if before is None:
-            del os.environ["SIMIAM_HIDDEN"]
-        else:
-            os.environ["SIMIAM_HIDDEN"] = before
-    return {"format": CONFIG_FORMAT, "week": week, "hidden_visibility": hidden_visibility,
-            "max_score": sum(c.weight for c in checks), "checks": len(checks),
-            "hidden_checks": sum(c.visibility != "visible" for c in checks),
-            "package_version": package_version(), "check_set_hash": digest}
-
-
-def stage_common(week: int, course: Path, seed: int, hidden_visibility: str, into: Path) -> tuple[Path, dict]:
-    """Wheel, secret and config.json in `into` (shared by the Gradescope zip and the PrairieLearn image)."""
-    from grader.hidden import hidden_dir
-
-    wheel = build_wheel(course, into / "dist")
-    answers = answers_in(wheel)
-    if answers:
-        raise ValueError(f"the wheel built from {course} holds answers ({', '.join(answers[:5])}): a bundle "
-                         "must not ship them; fix the package data in pyproject.toml")
-    hidden = hidden_dir() / f"week{week}.json"
-    secret = write_secret(into / "secret", week, seed, hidden if hidden.is_file() else None)
-    config = build_config(week, hidden_visibility, secret / "hidden")
-    config["wheel"] = wheel.name
-    (into / "config.json").write_text(json.dumps(config, indent=1), encoding="utf-8")
-    return wheel, config
 
 
 def build(week: int, out: Path, course: Path, seed: int, hidden_visibility: str = "after_published") -> dict:

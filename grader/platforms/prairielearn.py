@@ -34,6 +34,7 @@ from pathlib import Path
 import jinja2
 
 from grader.batch.store import write_atomic
+from grader.platforms.bundle import stage_common
 from grader.platforms.handout import copy_handout
 from grader.platforms.official import (
     BundleBroken,
@@ -55,8 +56,6 @@ _UUID_NAMESPACE = uuid.UUID("5d0c1a3e-6b8f-4d0e-9a57-51a1a0c0e2b1")
 def build(week: int, out: Path, course: Path, seed: int, image: str | None = None,
           timeout: int = 120) -> dict:
     """Write the question and the image folder of `week` into the new folder `out`; return the config."""
-    from grader.platforms.gradescope import stage_common
-
     if not 1 <= timeout <= 600:
         raise ValueError("--timeout must be between 1 and 600 seconds (PrairieLearn's limit)")
     if out.exists() and any(out.iterdir()):

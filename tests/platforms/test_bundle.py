@@ -1,5 +1,6 @@
-"""The wheel a bundle ships is built from a clean copy of the course (stale build/ output cannot sneak an
-answer in), and a wheel or an installed package holding answers is named, so the bundle refuses it."""
+"""What every bundle carries: a wheel built from a clean copy of the course (stale build/ output cannot sneak
+an answer in; a wheel holding answers is named and refused), and a grading that gives the reference
+solution full marks, else nothing is written."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ from pathlib import Path
 import pytest
 from mistakes import ROOT
 
+from grader.cli import main
 from grader.platforms.wheel import _NOT_SOURCE, answers_in, build_wheel
 
 
@@ -36,3 +38,14 @@ def test_stale_build_output_in_the_checkout_does_not_reach_the_wheel(tmp_path: P
         names = archive.namelist()
     assert "simiam/course/skeletons/week3/go_to_goal.py" in names and "grader/platforms/templates/" \
         "gradescope_setup.sh" in names
+
+
+@pytest.mark.slow
+def test_a_bundle_without_the_weeks_hidden_set_is_refused(tmp_path: Path, monkeypatch, capsys):
+    monkeypatch.setenv("SIMIAM_HIDDEN", str(tmp_path / "no-hidden-set"))
+    out = tmp_path / "autograder.zip"
+    args = ["package", "gradescope", "week4", "--out", str(out), "--seed", "5", "--course", str(ROOT)]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert "would not give solutions/week4 full marks" in err and "week4.avoid.other_starts" in err
+    assert not out.exists()
