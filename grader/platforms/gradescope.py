@@ -43,6 +43,8 @@ from grader.platforms.official import (
 
 TEMPLATES = Path(__file__).with_name("templates")
 MESSAGE_CHARS = 4000        # per test output; Gradescope shows it collapsed, students read the start
+_WHEN = {"after_published": "once grades are published", "after_due_date": "after the due date",
+         "hidden": "never (only your instructor does)", "visible": "right away"}
 
 
 def build(week: int, out: Path, course: Path, seed: int, hidden_visibility: str = "after_published") -> dict:
@@ -87,8 +89,9 @@ def summary_html(result: dict, config: dict) -> str:
         lines.append(f"Your submission could not be graded: {esc(cap(result.get('message'), 2000))}")
     hidden = config.get("hidden_checks", 0)
     if hidden:
+        when = _WHEN.get(config.get("hidden_visibility"), "later")
         lines.append(f"{hidden} of the checks are hidden (other goals, start poses or worlds); "
-                     f"their results show {esc(config['hidden_visibility'].replace('_', ' '))}.")
+                     f"you see their results {when}.")
     for note in (result.get("notices") or [])[:20]:
         lines.append("Note: " + esc(cap(note, 500)))
     isolation = result.get("isolation")
