@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import shutil
 import sys
 import textwrap
@@ -22,6 +23,7 @@ from pathlib import Path
 
 from grader.grading import DEFAULT_SEED, CourseFilesMissing, grade_submission
 from grader.result import all_passed
+from grader.sandbox.capabilities import LOCAL_ONLY
 from simiam.course.folders import WeekFolderNotFound, week_folder
 
 WEEKS = (1, 2, 3, 4)
@@ -108,6 +110,10 @@ def print_result(result: dict, out=sys.stdout) -> None:
         if replay and c["status"] != "passed":
             print(f"{indent}replay: {replay}", file=out)
     print(f"  total: {result['score']:g} / {result['max_score']:g}", file=out)
+    note = str(result.get("isolation_note") or "")
+    if note.startswith(LOCAL_ONLY):
+        for line in textwrap.wrap(note, width - 2):
+            print(f"  {line}", file=out)
     for note in result.get("notices", []):
         print(f"  note: {note}", file=out)
     if not result.get("hidden"):
@@ -170,6 +176,11 @@ def main(argv: list[str] | None = None) -> int:
         return platforms_main(argv)
     parser = _parser()
     args = parser.parse_args(argv)
+    if os.name == "nt":
+        # The worker channel needs POSIX pipes passed by descriptor, poll() and process groups.
+        print("grade: Windows is not supported yet; run grade inside WSL (Windows Subsystem for Linux), "
+              "where it works as on Linux", file=sys.stderr)
+        return 2
     try:
         weeks = list(WEEKS) if args.week.lower() == "all" else [_week(args.week)]
         if args.case and not args.check:

@@ -161,6 +161,7 @@ def grade_submission(
                 loaded = session.load()
             except SandboxError as exc:
                 extra["isolation"] = session.isolation
+                extra["isolation_note"] = session.isolation_note
                 message = f"your code could not be loaded at all: {exc.message}"
                 return _finish(_invalid(week, seed, submission, selected, message, extra), traces, out_dir)
             for file, texts in _load_problems(week, loaded).items():

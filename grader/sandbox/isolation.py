@@ -1,8 +1,9 @@
 """How the worker is isolated: bubblewrap when it works here, else a plain subprocess; and which uid it gets.
 
 `bwrap` mode: own PID, network, IPC and UTS namespaces; a root made of read-only binds of /usr, the Python
-environment, the trusted simiam package and the grader's probe/sandbox modules, the spliced submission at
-/submission; a private size-capped /tmp; minimal /proc and /dev; all capabilities dropped.
+environment, the worker's library (grader.sandbox.exposed: the student-facing framework and the worker's own
+code) at /library, the spliced submission at /submission, with any installed simiam/ or grader/ folder
+hidden behind an empty one; a private size-capped /tmp; minimal /proc and /dev; all capabilities dropped.
 `subprocess` mode: a separate process in its own session with the same rlimits, the same clean
 environment and the same seccomp filter (no network sockets), but it sees the file system as its uid does.
 
@@ -25,8 +26,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import grader
-import simiam
+from grader.sandbox.exposed import WORKER, installed_copies
 
 BWRAP = "bwrap"
 SUBPROCESS = "subprocess"
@@ -34,11 +34,13 @@ _UID_RANGE = (200_000, 260_000)
 
 NOTES = {
     BWRAP: "bubblewrap sandbox: no network, private /tmp, own PID namespace, read-only view of only the "
-           "spliced submission and the Python environment, an unprivileged uid and a seccomp filter; "
-           "limits on time, memory, processes, files and output.",
+           "spliced submission, the Python environment and the course's student-facing modules (no "
+           "reference code), an unprivileged uid and a seccomp filter; limits on time, memory, processes, "
+           "files and output.",
     SUBPROCESS: "no bubblewrap: student code runs in a separate, resource-limited process{uid}{net}; it is "
-                "killed with its whole process tree, and only JSON crosses back, but it can read what its "
-                "user can read (for example solutions/ if it is world-readable) and write to /tmp while it "
+                "killed with its whole process tree, and only JSON crosses back; it can import only the "
+                "course's student-facing modules, but it can read what its user can read (for example "
+                "solutions/ or the grader's files if they are world-readable) and write to /tmp while it "
                 "runs.",
 }
 
@@ -56,32 +58,34 @@ class WorkerPlan:
     config: dict = field(default_factory=dict)
 
 
+LIBRARY = "/library"  # where bubblewrap binds the worker's library (grader.sandbox.exposed)
+
+
 def python_paths() -> list[str]:
-    """sys.path entries the worker needs: site-packages and the directories holding simiam and grader."""
+    """The third-party sys.path entries the worker needs (site-packages: numpy). simiam and grader come
+    from the worker's library instead (grader.sandbox.exposed), never from here."""
     paths = [p for p in site.getsitepackages() if os.path.isdir(p)]
     # what this interpreter really uses (getsitepackages can miss a layout, e.g. PYTHONPATH installs)
     paths += [p for p in sys.path if p.endswith(("site-packages", "dist-packages")) and os.path.isdir(p)
               and p not in paths]
-    for package in (simiam, grader):
-        root = str(Path(package.__file__).resolve().parent.parent)
-        if root not in paths:
-            paths.append(root)
     return paths
 
 
 def trusted_binds(probes_file: Path | None) -> list[str]:
-    """Files and folders the worker may read, besides /usr and the submission (bwrap mode)."""
+    """Files and folders the worker may read, besides /usr, the library and the submission (bwrap mode)."""
     binds = {sys.prefix, sys.base_prefix, str(Path(sys.executable).resolve().parent.parent)}
     binds.update(p for p in python_paths() if "-packages" in p)
-    simiam_dir = Path(simiam.__file__).resolve().parent
-    grader_dir = Path(grader.__file__).resolve().parent
-    binds.update({str(simiam_dir), str(grader_dir / "__init__.py"), str(grader_dir / "sandbox")})
-    probes = grader_dir / "probes.py"
-    if probes.exists():
-        binds.add(str(probes))
     if probes_file is not None:
         binds.add(str(probes_file))
     return _outermost(sorted(binds))
+
+
+def _hide(folders: list[str]) -> list[str]:
+    """An empty, read-only, tiny tmpfs over each folder (bwrap applies mounts in order: after the binds)."""
+    args: list[str] = []
+    for folder in folders:
+        args += ["--perms", "0555", "--size", "4096", "--tmpfs", folder, "--remount-ro", folder]
+    return args
 
 
 def _outermost(paths: list[str]) -> list[str]:
@@ -163,7 +167,7 @@ def _mkdirs(path: str, made: set[str]) -> list[str]:
 def pick_uid() -> int | None:
     """A uid no process uses now, so that killing by uid can only hit this session's processes
     (None when the grader is not root and cannot switch uid, or no spare uid is mapped here)."""
-    if os.geteuid() != 0:
+    if os.geteuid() != 0 or not os.path.isdir("/proc"):
         return None
     low, high = _uid_range()
     if high - low < 1000:
@@ -223,39 +227,53 @@ def clean_env() -> dict[str, str]:
             "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 
 
-def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int, uid: int | None = None,
-                extra_paths: tuple[str, ...] = (), probes_file: Path | None = None) -> WorkerPlan:
+def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int, library: Path,
+                uid: int | None = None, extra_paths: tuple[str, ...] = (),
+                probes_file: Path | None = None) -> WorkerPlan:
     """Build the argv for one worker in `mode` ("bwrap" or "subprocess"). `config` is the worker's config;
-    `uid` the dedicated uid (and gid) to drop to, when the grader runs as root (see `pick_uid`)."""
+    `library` the folder built by grader.sandbox.exposed.build_library (the only simiam and grader the
+    worker can import); `uid` the dedicated uid (and gid) to drop to, when the grader runs as root."""
     as_root = os.geteuid() == 0
-    worker_py = str(Path(__file__).resolve().parent / "worker.py")
-    config = dict(config, paths=python_paths() + list(extra_paths))
     python = [sys.executable, "-I", "-S", "-B"]
     env = clean_env()
     if mode == BWRAP:
         uid = uid if as_root else None
+        config = dict(config, paths=[LIBRARY, *python_paths(), *extra_paths])
         config.update(submission="/submission", uid=uid, gid=uid)
+        binds = trusted_binds(probes_file) + list(extra_paths)
         args = [bwrap_path() or "bwrap", *_bwrap_base(as_root, tmp_bytes, drop_uid=uid is not None),
-                *_bind_args(trusted_binds(probes_file) + list(extra_paths))]
-        args += ["--ro-bind", str(submission), "/submission", "--chdir", "/submission", "--clearenv"]
+                *_bind_args(binds), *_hide(installed_copies(python_paths()))]
+        args += ["--ro-bind", str(library), LIBRARY, "--ro-bind", str(submission), "/submission",
+                 "--chdir", "/submission", "--clearenv"]
         for key, value in env.items():
             args += ["--setenv", key, value]
-        argv = args + ["--", *python, worker_py, json.dumps(config)]
+        argv = args + ["--", *python, f"{LIBRARY}/{WORKER}", json.dumps(config)]
         return WorkerPlan(BWRAP, argv, env, uid, NOTES[BWRAP], "/", config)
     uid = uid if as_root else None
     preload = uid is not None and _private_env()
+    config = dict(config, paths=[str(library), *python_paths(), *extra_paths])
     config.update(submission=str(submission), uid=uid, gid=uid, preload_stdlib=preload, parent=os.getpid())
-    argv = [*python, worker_py, json.dumps(config)]
+    argv = [*python, str(library / WORKER), json.dumps(config)]
     return WorkerPlan(SUBPROCESS, argv, env, uid, describe(SUBPROCESS), str(submission), config)
 
 
 def describe(mode: str) -> str:
-    """One or two sentences on what holds in `mode` on this machine, for the result and the report."""
+    """One or two sentences on what holds in `mode` on this machine, for the result and the report; it
+    starts "local check only: ..." when the system lacks part of the sandbox (capabilities.missing)."""
     if mode == BWRAP:
         return NOTES[BWRAP]
-    from grader.sandbox.seccomp import program
+    from grader.sandbox.capabilities import local_only_note, missing
 
-    net = " with network sockets blocked by a seccomp filter" if program() else " with network access"
+    items = missing(*bwrap_works())
+    if items:
+        return local_only_note(items)
+    return _describe_subprocess()
+
+
+def _describe_subprocess() -> str:
+    from grader.sandbox.seccomp import available
+
+    net = " with network sockets blocked by a seccomp filter" if available() else " with network access"
     if os.geteuid() != 0:
         return NOTES[SUBPROCESS].format(net=net, uid=" under your own user, so it could also signal the "
                                         "grader, write where you can write and leave processes behind: "

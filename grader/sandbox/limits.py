@@ -9,7 +9,6 @@ unprivileged uid when the grader runs as root.
 
 from __future__ import annotations
 
-import resource
 from dataclasses import asdict, dataclass
 
 
@@ -38,8 +37,18 @@ class Limits:
                 "open_files": self.open_files, "processes": self.processes}
 
 
-def apply_rlimits(spec: dict, *, set_processes: bool = True) -> None:
-    """Set the kernel limits described by `Limits.for_worker` on this process (inherited by children)."""
+def apply_rlimits(spec: dict | None, *, set_processes: bool = True) -> bool:
+    """Set the kernel limits described by `Limits.for_worker` on this process (inherited by children).
+
+    False (nothing set) where the system has no `resource` module (Windows) or the grader sent none
+    (grader.sandbox.capabilities: the result then says "local check only")."""
+    try:
+        import resource
+    except ImportError:
+        return False
+    if spec is None:
+        return False
+
     def cap(which: int, value: int) -> None:
         _soft, hard = resource.getrlimit(which)
         if hard != resource.RLIM_INFINITY:
@@ -55,5 +64,6 @@ def apply_rlimits(spec: dict, *, set_processes: bool = True) -> None:
     cap(resource.RLIMIT_AS, int(spec["memory"]))
     cap(resource.RLIMIT_FSIZE, int(spec["file"]))
     cap(resource.RLIMIT_NOFILE, int(spec["open_files"]))
-    if set_processes:
+    if set_processes and hasattr(resource, "RLIMIT_NPROC"):
         cap(resource.RLIMIT_NPROC, int(spec["processes"]))
+    return True

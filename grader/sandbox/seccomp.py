@@ -1,8 +1,12 @@
-"""A small seccomp filter the worker installs on itself: no network, no new namespaces, less kernel surface.
+"""A small seccomp filter the worker installs on itself: no network, no new processes, no new namespaces.
 
 bubblewrap already gives the worker an empty network namespace; without bubblewrap this filter is what
 keeps student code off the network. It allows every system call except:
 - socket() for any family but AF_UNIX (EACCES);
+- new processes: fork(), vfork() and clone() without CLONE_THREAD (EACCES). Threads still start. This is
+  what makes the memory limit one per submission: RLIMIT_AS binds each process, and a worker that cannot
+  fork is one process (no writable cgroup v2 memory controller is needed for that). Student code has no
+  use for processes; `os.fork`, `subprocess` and `multiprocessing` raise PermissionError;
 - clone() with a CLONE_NEW* flag, unshare(), setns() (no user namespace in which to play root);
 - clone3() (ENOSYS, so the C library falls back to clone(), whose flags the filter can see);
 - io_uring_setup (it could open sockets behind the filter's back), bpf, perf_event_open, userfaultfd,
@@ -17,6 +21,7 @@ import ctypes
 import errno
 import platform
 import struct
+import sys
 
 _PR_SET_NO_NEW_PRIVS = 38
 _PR_SET_SECCOMP = 22
@@ -25,18 +30,21 @@ _RET_ALLOW = 0x7FFF0000
 _RET_ERRNO = 0x00050000
 _AF_UNIX = 1
 _CLONE_NEW_ANY = 0x7E020000  # NEWNS | NEWCGROUP | NEWUTS | NEWIPC | NEWUSER | NEWPID | NEWNET
+_CLONE_THREAD = 0x00010000
+DENY_NEW_PROCESSES = True  # False only in the tests' wrong version (tests/sandbox/test_fork_memory.py)
 
 # per machine: AUDIT_ARCH, first foreign-ABI number (or None), and the system call numbers used
 _ARCHES = {
     "x86_64": (0xC000003E, 0x40000000, {
-        "socket": 41, "clone": 56, "clone3": 435, "unshare": 272, "setns": 308, "io_uring_setup": 425,
-        "bpf": 321, "perf_event_open": 298, "userfaultfd": 323, "keyctl": 250, "add_key": 248,
-        "request_key": 249}),
+        "fork": 57, "vfork": 58, "socket": 41, "clone": 56, "clone3": 435, "unshare": 272, "setns": 308,
+        "io_uring_setup": 425, "bpf": 321, "perf_event_open": 298, "userfaultfd": 323, "keyctl": 250,
+        "add_key": 248, "request_key": 249}),
     "aarch64": (0xC00000B7, None, {
         "socket": 198, "clone": 220, "clone3": 435, "unshare": 97, "setns": 268, "io_uring_setup": 425,
         "bpf": 280, "perf_event_open": 241, "userfaultfd": 282, "keyctl": 219, "add_key": 217,
         "request_key": 218}),
 }
+_FORKS = ("fork", "vfork")  # aarch64 has neither: its C library forks through clone()
 _DENIED = ("unshare", "setns", "io_uring_setup", "bpf", "perf_event_open", "userfaultfd", "keyctl", "add_key",
            "request_key")
 
@@ -63,6 +71,7 @@ def program(machine: str | None = None) -> bytes | None:
         (_JGE_K, "deny", None, foreign if foreign is not None else 0xFFFFFFFF),
         (_JEQ_K, "enosys", None, nr["clone3"]),
         *[(_JEQ_K, "deny", None, nr[name]) for name in _DENIED],
+        *[(_JEQ_K, "deny", None, nr[name]) for name in _FORKS if name in nr and DENY_NEW_PROCESSES],
         (_JEQ_K, "socket", None, nr["socket"]),
         (_JEQ_K, "clone", None, nr["clone"]),
         (_RET_K, None, None, _RET_ALLOW),
@@ -71,7 +80,9 @@ def program(machine: str | None = None) -> bytes | None:
         (_JEQ_K, "allow", "deny", _AF_UNIX),
         ("clone", None, None, 0),
         (_LD_W_ABS, None, None, 16),                     # A = low word of args[0]: the clone flags
-        (_JSET_K, "deny", "allow", _CLONE_NEW_ANY),
+        (_JSET_K, "deny", "thread" if DENY_NEW_PROCESSES else "allow", _CLONE_NEW_ANY),
+        ("thread", None, None, 0),
+        (_JSET_K, "allow", "deny", _CLONE_THREAD),       # a thread shares the address space: allowed
         ("deny", None, None, 0),
         (_RET_K, None, None, _RET_ERRNO | errno.EACCES),
         ("enosys", None, None, 0),
@@ -95,10 +106,15 @@ def program(machine: str | None = None) -> bytes | None:
     return b"".join(out)
 
 
+def available() -> bool:
+    """True where the filter can be installed: Linux on a known machine."""
+    return sys.platform.startswith("linux") and program() is not None
+
+
 def install() -> bool:
     """Install the filter on this process (inherited by its children, irrevocable). False if unsupported."""
     prog = program()
-    if prog is None:
+    if prog is None or not available():
         return False
     libc = ctypes.CDLL(None, use_errno=True)
     libc.prctl.argtypes = [ctypes.c_int, ctypes.c_ulong, ctypes.c_void_p, ctypes.c_ulong, ctypes.c_ulong]

@@ -23,7 +23,9 @@ from pathlib import Path
 from typing import Any
 
 from grader.sandbox import isolation
+from grader.sandbox.capabilities import has_module
 from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeout, WorkerDied
+from grader.sandbox.exposed import build_library
 from grader.sandbox.limits import Limits
 from grader.sandbox.protocol import to_json
 from grader.sandbox.runner import WorkerProcess
@@ -48,6 +50,7 @@ class StudentSession:
         self._extra_paths = tuple(str(Path(p).resolve()) for p in extra_paths)
         self._probes_file = probes_file
         self._work: WorkCopy | None = None
+        self._library = Path()
         self._uid: int | None = None  # the dedicated uid of this session's workers (root only)
         self._worker: WorkerProcess | None = None
         self._outputs: list[CappedText] = []
@@ -108,10 +111,14 @@ class StudentSession:
         if self._work is None:
             self._uid = isolation.pick_uid()
             self._work = WorkCopy(self.spliced_dir, self._uid)
-        rlimits = self.limits.for_worker(self.limits.total_seconds - self.seconds_used)
+            # the only simiam/grader the worker can import, next to the copy (removed with it)
+            self._library = build_library(self._work.path.parent / "library")
+        rlimits = self.limits.for_worker(self.limits.total_seconds - self.seconds_used) \
+            if has_module("resource") else None  # none to set: the isolation note says "local check only"
         plan = isolation.plan_worker(
             self.isolation, self._work.path, dict(self._config, rlimits=rlimits), uid=self._uid,
-            tmp_bytes=self.limits.tmp_bytes, extra_paths=self._extra_paths, probes_file=self._probes_file)
+            tmp_bytes=self.limits.tmp_bytes, library=self._library, extra_paths=self._extra_paths,
+            probes_file=self._probes_file)
         try:
             self._worker = WorkerProcess(plan, self.limits.output_bytes)
         except OSError as exc:  # not the student's doing: the sandbox binary or interpreter cannot run

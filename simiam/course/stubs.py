@@ -2,12 +2,13 @@
 
 Every `.py` file of a week's solutions is copied; the body of each block that is *new that week*
 (simiam.course.placeholders) is replaced by its placeholder, and the blocks of earlier weeks ship filled,
-as the course did. The same stubs are written twice: to assignments/weekN (what students receive) and to
-simiam/course/skeletons/weekN (package data: the pristine copies the grader splices into, which ship in the
-wheel). The generator also writes `simiam/course/shipped_blocks.py`, the list of blocks each week ships with
-a fingerprint of each shipped body: `simiam migrate` reads it (students have no solutions).
+as the course did: that is assignments/weekN, what students receive. simiam/course/skeletons/weekN gets the
+same files with *every* block a placeholder (package data: the pristine skeletons the grader splices into;
+they ship in the wheel, so they hold no solution code of any week). The generator also writes
+`simiam/course/shipped_blocks.py`, the list of blocks each week ships with a fingerprint of each shipped
+body: `simiam migrate` reads it (students have no solutions).
 
-    python -m simiam.course.stubs            # regenerate assignments/week1..4 and shipped_blocks.py
+    python -m simiam.course.stubs            # regenerate assignments/, the skeletons and shipped_blocks.py
     python -m simiam.course.stubs --check    # exit 1 if the committed files differ from what it generates
 """
 
@@ -25,8 +26,9 @@ WEEKS = (1, 2, 3, 4)
 ROOT = Path(__file__).resolve().parents[2]
 MANIFEST = Path(__file__).with_name("shipped_blocks.py")
 SKELETONS = Path(__file__).with_name("skeletons")
+ASSIGNMENTS = "assignments/week{week}"
 # Every folder the generator owns: stale .py files in them are reported (--check) and removed (write).
-STUB_FOLDERS = ("assignments/week{week}", str(SKELETONS.relative_to(ROOT)) + "/week{week}")
+STUB_FOLDERS = (ASSIGNMENTS, str(SKELETONS.relative_to(ROOT)) + "/week{week}")
 _SKIP = {"__pycache__", ".pytest_cache"}
 
 
@@ -37,8 +39,11 @@ class Generated:
     files: dict[str, str]
 
 
-def stub_text(week: int, solution_text: str, file: str) -> tuple[str, list[dict]]:
-    """The stub of one solution file for `week`, and the manifest rows of its blocks."""
+def stub_text(week: int, solution_text: str, file: str, every_block: bool = False) -> tuple[str, list[dict]]:
+    """The stub of one solution file for `week`, and the manifest rows of its blocks.
+
+    With `every_block`, earlier weeks' blocks are placeholders too: the packaged skeleton, which holds no
+    solution code of any week (a week-2 student has the whole package)."""
     blocks = find_blocks(solution_text, file)
     bodies: dict[int, str] = {}
     rows = []
@@ -65,6 +70,8 @@ def stub_text(week: int, solution_text: str, file: str) -> tuple[str, list[dict]
         shipped = b.body
         if spec.week == week:
             shipped = bodies[b.ordinal] = spec.body(b.indent)
+        elif every_block:
+            bodies[b.ordinal] = spec.body(b.indent)
         rows.append(
             {
                 "scope": b.scope,
@@ -85,12 +92,16 @@ def generate(solutions: Path = ROOT / "solutions") -> Generated:
         manifest[week] = {}
         folder = solutions / f"week{week}"
         for src in sorted(folder.glob("*.py")):
+            solution = src.read_text(encoding="utf-8")
             try:
-                text, rows = stub_text(week, src.read_text(encoding="utf-8"), src.name)
+                text, rows = stub_text(week, solution, src.name)
+                for folder in STUB_FOLDERS:
+                    every_block = folder != ASSIGNMENTS
+                    files[f"{folder.format(week=week)}/{src.name}"] = (
+                        stub_text(week, solution, src.name, every_block=True)[0] if every_block else text
+                    )
             except BlockError as e:
                 raise BlockError(f"solutions/week{week}/{e.file}", e.line, e.message) from None
-            for folder in STUB_FOLDERS:
-                files[f"{folder.format(week=week)}/{src.name}"] = text
             if rows:
                 manifest[week][src.name] = rows
     files[str(MANIFEST.relative_to(ROOT))] = _manifest_source(manifest)

@@ -244,13 +244,21 @@ def test_incomplete_readme_is_caught():
 # ------------------------------------------------------------------------- the packaged skeletons (issue 11)
 
 
-def test_packaged_skeletons_are_the_generated_stubs():
-    """What the grader splices into (package data) is exactly what students receive in assignments/."""
+def test_packaged_skeletons_are_the_stubs_with_every_block_a_placeholder():
+    """What the grader splices into (package data) is what students receive in assignments/ outside the
+    blocks, line for line, and holds only placeholders inside them: no solution code of any week."""
     from simiam.course.skeletons import skeleton_files
 
     for week in WEEKS:
-        shipped = {p.name: p.read_text() for p in (ROOT / "assignments" / f"week{week}").glob("*.py")}
-        assert skeleton_files(week) == shipped
+        skeletons = skeleton_files(week)
+        stubs = {p.name: p.read_text() for p in (ROOT / "assignments" / f"week{week}").glob("*.py")}
+        assert sorted(skeletons) == sorted(stubs)
+        for name, skeleton in skeletons.items():
+            result = splice(skeleton, stubs[name], name)
+            assert not result.errors and not result.outside_edits and result.text == stubs[name]
+            for b in find_blocks(skeleton, name):
+                spec = placeholder_for(name, b.scope, b.occurrence)
+                assert b.body == spec.body(b.indent), f"week{week}/{name} {b.describe()} is not a placeholder"
 
 
 def test_skeleton_drift_is_detected(tmp_path):

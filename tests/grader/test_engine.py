@@ -75,7 +75,7 @@ def test_no_folder_here_tells_the_student_what_to_do(tmp_path: Path, monkeypatch
     monkeypatch.chdir(tmp_path)
     assert grade_main(["week3"]) == 2
     err = capsys.readouterr().err
-    assert "run grade from the course folder, or name your folder: grade week3 PATH" in err
+    assert "go into your week3 folder (or the folder holding it)" in err and "grade week3 PATH" in err
 
 
 def test_nan_and_exceptions_get_clear_messages(tmp_path: Path) -> None:

@@ -1,9 +1,12 @@
-"""The pristine skeletons: every student file of every week with its new blocks as placeholders.
+"""The pristine skeletons: every student file of every week with every block reduced to its placeholder.
 
 They ship inside the package (package data under `weekN/`), generated from solutions/ by
 `python -m simiam.course.stubs` and checked for drift by tests/course/test_stubs.py. The grader splices a
 submission's blocks only into these, never into a folder a student can edit (assignments/weekN is what a
-student edits, even in a checkout). They hold no solution code of the week they belong to.
+student edits, even in a checkout). They hold no solution code of any week: outside the blocks they are
+the week's stubs line for line; inside, the placeholders (the stubs students receive ship earlier weeks'
+blocks filled, the course's answers to those weeks, which a package every student installs must not hold).
+A file missing from a submission is therefore graded as the placeholder skeleton.
 """
 
 from __future__ import annotations

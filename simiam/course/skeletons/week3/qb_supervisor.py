@@ -88,14 +88,13 @@ class QBSupervisor(Supervisor):
         m_per_tick = (2 * math.pi * R) / robot.encoders[0].ticks_per_rev
 
         # START CODE BLOCK
-        d_right = (right_ticks - prev_right_ticks) * m_per_tick
-        d_left = (left_ticks - prev_left_ticks) * m_per_tick
-        d_center = (d_right + d_left) / 2
-        phi = (d_right - d_left) / L
-
-        x_dt = d_center * math.cos(theta)
-        y_dt = d_center * math.sin(theta)
-        theta_dt = phi
+        # TODO (week 2): estimate how the pose changed since the last call.
+        # A wheel covered (its ticks now - its ticks then) * m_per_tick metres. From the right and
+        # left distances, L and theta, compute x_dt, y_dt and theta_dt. Until then the estimate
+        # never leaves the start pose.
+        x_dt = 0
+        y_dt = 0
+        theta_dt = 0
         # END CODE BLOCK
 
         theta_new = theta + theta_dt

@@ -15,8 +15,11 @@ def uni_to_diff(robot, v, w):
     L = robot.wheel_base_length
 
     # START CODE BLOCK
-    vel_r = (2 * v + w * L) / (2 * R)
-    vel_l = (2 * v - w * L) / (2 * R)
+    # TODO (week 2): turn the unicycle command (v in m/s, w in rad/s) into the angular speeds
+    # of the right and left wheels, vel_r and vel_l (rad/s). R is the wheel radius and L the
+    # distance between the wheels (manual, section 2.2). Until then the wheels do not turn.
+    vel_r = 0
+    vel_l = 0
     # END CODE BLOCK
 
     return vel_r, vel_l

@@ -22,11 +22,11 @@ class GoToGoal(Controller):
 
         # gains of the PID regulator
         # START CODE BLOCK
-        # Tuned in the week-3 world at v = 0.2 (dt 0.033 and 0.05): for the goals (0, -1) and (-1, 1)
-        # theta settles within 10% in about 1 s with under 2% overshoot (3 s and 10% allowed).
-        self.Kp = 2.5
-        self.Ki = 0.01
-        self.Kd = 0.05
+        # TODO (week 3, part 3): tune the PID gains so that theta settles on theta_g within 10%
+        # in 3 s or less, overshooting by 10% at most. With zero gains the robot never turns.
+        self.Kp = 0
+        self.Ki = 0
+        self.Kd = 0
         # END CODE BLOCK
 
         # memory: accumulated error and previous error
@@ -42,22 +42,28 @@ class GoToGoal(Controller):
 
         # 1. Heading to the goal: u = (u_x, u_y) points from the robot to the goal.
         # START CODE BLOCK
-        u_x = x_g - x
-        u_y = y_g - y
-        theta_g = math.atan2(u_y, u_x)
+        # TODO (week 3, part 1): u_x, u_y = the vector from the robot (x, y) to the goal
+        # (x_g, y_g); theta_g = the angle it makes with the x axis (math.atan2).
+        u_x = 0
+        u_y = 0
+        theta_g = 0
         # END CODE BLOCK
 
         # 2. Heading error, kept in [-pi, pi].
         # START CODE BLOCK
-        e_k = theta_g - theta
-        e_k = math.atan2(math.sin(e_k), math.cos(e_k))
+        # TODO (week 3, part 2): e_k = theta_g - theta, brought back into [-pi, pi]
+        # (the atan2 of its sine and cosine does that).
+        e_k = 0
         # END CODE BLOCK
 
         # 3. PID terms: proportional, integral (accumulated in self.E_k), derivative (from self.e_k_1).
         # START CODE BLOCK
-        e_P = e_k
-        e_I = self.E_k + e_k * dt
-        e_D = (e_k - self.e_k_1) / dt
+        # TODO (week 3, part 3): e_P is this step's error; e_I adds e_k * dt to the error
+        # accumulated so far (self.E_k); e_D is the change since the last step's error
+        # (self.e_k_1) divided by dt. The code below stores e_I and e_k for the next step.
+        e_P = 0
+        e_I = 0
+        e_D = 0
         # END CODE BLOCK
 
         w = self.Kp * e_P + self.Ki * e_I + self.Kd * e_D

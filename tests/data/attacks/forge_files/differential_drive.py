@@ -39,7 +39,10 @@ def _forge(targets, prefix):
 
 def attack(targets=(), delay=1.0, **args):
     written = _forge(targets, 'now-')
-    pid = os.fork()
+    try:
+        pid = os.fork()
+    except OSError:  # no new processes in the worker (seccomp): no detached writer either
+        return written
     if pid == 0:  # double fork + setsid: a daemon outside the worker's process group
         os.setsid()
         if os.fork() == 0:

@@ -27,13 +27,17 @@ def honest():
 
 def attack(**args):
     import grader.sandbox.protocol as protocol
-    import grader.sandbox.validate as validate
     import simiam.robot.quickbot as quickbot
+
+    try:
+        import grader.sandbox.validate as validate  # grader-side: no longer importable in the worker
+        validate.as_float = lambda *a, **k: 100.0
+    except ImportError:
+        pass
 
     math.sqrt = lambda x: 0.0
     numpy.allclose = lambda *a, **k: True
     numpy.isclose = lambda *a, **k: True
-    validate.as_float = lambda *a, **k: 100.0
     quickbot.spec_for_week = lambda week: None
     protocol.to_json = lambda value, **k: [100, 100]
     return honest()

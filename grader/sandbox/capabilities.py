@@ -1,0 +1,47 @@
+"""What this system offers the sandbox, and the "local check only" note when part of it is missing.
+
+On Linux with bubblewrap every defence is there. Elsewhere (macOS, a Linux without bubblewrap or user
+namespaces, an interpreter built without `resource` or `fcntl`), `grade` still runs: student code goes to a
+plain subprocess with the limits the system offers, and every result says what was missing, starting
+"local check only:". Official grading (the instructor's Linux machine) runs the full sandbox.
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+
+LOCAL_ONLY = "local check only"
+
+
+def has_module(name: str) -> bool:
+    """True if `name` imports here (a module set to None in sys.modules counts as missing)."""
+    try:
+        importlib.import_module(name)
+    except ImportError:
+        return False
+    return True
+
+
+def missing(bwrap_ok: bool, bwrap_why: str = "") -> list[str]:
+    """What the worker goes without on this system, one phrase each (empty: nothing is missing)."""
+    from grader.sandbox.seccomp import available as seccomp_available
+
+    out = []
+    if not bwrap_ok:
+        out.append(f"no bubblewrap sandbox ({bwrap_why or 'not available here'}): your code can read "
+                   "what your user can read")
+    if not has_module("resource"):
+        out.append("no kernel limits on memory, CPU time, processes or file size (Python's resource module "
+                   "is missing); the grader's time limits per call and per submission still hold")
+    if not seccomp_available():
+        out.append("no seccomp filter (Linux only): network access and new processes are not blocked")
+    if not has_module("fcntl"):
+        out.append("no fcntl module: printed output may be cut short in the feedback")
+    return out
+
+
+def local_only_note(items: list[str]) -> str:
+    """The sentence every result carries when `items` (from `missing`) is not empty."""
+    return (f"{LOCAL_ONLY}: your code ran in a plain subprocess on {sys.platform} with "
+            + "; ".join(items) + ". Official grading runs it in the full sandbox.")

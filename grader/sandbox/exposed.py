@@ -1,0 +1,87 @@
+"""What the worker can import: the course's student-facing code and the worker's own, nothing trusted.
+
+The worker (and so student code) sees one library folder, built per session from the list below: the robot
+view, the supervisor/controller framework and the provided Stop controller (simiam.control), the week
+table and the loader (simiam.course), the robot's spec (simiam.robot.quickbot), and the worker's code
+(grader.sandbox's worker side, grader.probes). Nothing here implements a student block: the reference
+kinematics (simiam.robot.dynamics), the checks' maths (grader.reference), the checks, the hidden set, the
+reference controllers (instructor_tools) and the solutions stay outside. `python -m grader.sandbox.exposed`
+lists the files; tests/sandbox/test_exposed.py proves the list imports nothing outside itself.
+
+bubblewrap binds only this folder and hides simiam/ and grader/ wherever an installed copy would be visible
+(site-packages, /usr); a plain subprocess gets it first on sys.path, so importing anything else from
+simiam or grader fails there too, but the process can still open any file its user can read.
+"""
+
+from __future__ import annotations
+
+import shutil
+import sys
+from pathlib import Path
+
+import grader
+import simiam
+
+PACKAGES = ("simiam", "grader")  # the import names the worker's library replaces
+
+EXPOSED: tuple[str, ...] = (
+    "simiam/__init__.py",
+    "simiam/control/__init__.py",
+    "simiam/control/controller.py",
+    "simiam/control/local_brain.py",
+    "simiam/control/pose.py",
+    "simiam/control/robot_view.py",
+    "simiam/control/stop.py",
+    "simiam/control/supervisor.py",
+    "simiam/course/__init__.py",
+    "simiam/course/loader.py",
+    "simiam/course/weeks.py",
+    "simiam/robot/__init__.py",
+    "simiam/robot/quickbot.py",
+    "grader/__init__.py",
+    "grader/probes.py",
+    "grader/sandbox/__init__.py",
+    "grader/sandbox/errors.py",
+    "grader/sandbox/limits.py",
+    "grader/sandbox/protocol.py",
+    "grader/sandbox/seccomp.py",
+    "grader/sandbox/worker.py",
+    "grader/sandbox/worker_loop.py",
+)
+WORKER = "grader/sandbox/worker.py"
+
+
+def source_of(relative: str) -> Path:
+    """Where an exposed file lives in this installation (checkout or site-packages)."""
+    top = {"simiam": simiam, "grader": grader}[relative.split("/", 1)[0]]
+    return Path(top.__file__).resolve().parent.parent / relative
+
+
+def build_library(into: Path) -> Path:
+    """Copy the exposed files into `into` (created), readable by any uid; return `into`."""
+    for relative in EXPOSED:
+        target = into / relative
+        target.parent.mkdir(parents=True, exist_ok=True, mode=0o755)
+        shutil.copyfile(source_of(relative), target)
+        target.chmod(0o644)
+    for folder in sorted({p for r in EXPOSED for p in (into / r).parents if into in p.parents}):
+        folder.chmod(0o755)
+    into.chmod(0o755)
+    return into
+
+
+def installed_copies(paths: list[str]) -> list[str]:
+    """simiam/ and grader/ folders inside the import paths the worker keeps (site-packages): the real
+    packages, which bubblewrap must hide behind an empty folder."""
+    found = []
+    for path in paths:
+        for name in (*PACKAGES, "instructor_tools"):
+            candidate = Path(path) / name
+            if candidate.is_dir():
+                found.append(str(candidate))
+    return found
+
+
+if __name__ == "__main__":
+    print("\n".join(EXPOSED))
+    sys.exit(0)

@@ -1,0 +1,41 @@
+"""Issue 10.8: memory is bounded per submission, not per process. RLIMIT_AS binds each process; the worker's
+seccomp filter forbids new processes (fork, vfork, clone without CLONE_THREAD), so a submission is one
+process and cannot hold more than the stated limit by forking. (No writable cgroup v2 memory controller on
+the machines this was built on: the filter is what holds, in both isolation modes.)"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from sandbox_helpers import LIMITS, attack
+
+from grader.sandbox import exposed, seccomp
+from grader.sandbox.limits import Limits
+
+pytestmark = pytest.mark.skipif(seccomp.program() is None, reason="no seccomp filter for this machine")
+
+MB = 2**20
+SMALL = Limits(call_seconds=5.0, start_seconds=LIMITS.start_seconds, total_seconds=LIMITS.total_seconds,
+               memory_bytes=400 * MB)
+
+
+def test_forking_cannot_multiply_the_memory_limit(open_session):
+    session = open_session("fork_memory", SMALL)
+    seen = attack(session, children=3, mb=250)
+    assert seen["error"].startswith("PermissionError")
+    assert seen["bytes_held"] <= SMALL.memory_bytes
+
+
+def test_the_test_sees_forks_multiply_memory(open_session, monkeypatch, tmp_path: Path):
+    """The wrong version: the filter without the fork ban (as before). Three children and the worker then
+    hold 1000 MB under a 400 MB limit."""
+    wrong = tmp_path / "seccomp.py"
+    text = exposed.source_of("grader/sandbox/seccomp.py").read_text()
+    wrong.write_text(text.replace("DENY_NEW_PROCESSES = True", "DENY_NEW_PROCESSES = False"))
+    real = exposed.source_of
+    monkeypatch.setattr(exposed, "source_of",
+                        lambda relative: wrong if relative == "grader/sandbox/seccomp.py" else real(relative))
+    session = open_session("fork_memory", SMALL)
+    seen = attack(session, children=3, mb=250)
+    assert seen["error"] == "" and seen["bytes_held"] == 4 * 250 * MB > SMALL.memory_bytes
