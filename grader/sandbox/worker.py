@@ -4,8 +4,9 @@ Started as `python -I -S -B worker.py '<config JSON>'`: isolated mode, no site h
 sitecustomize or .pth file from anywhere runs), no bytecode writes. The bootstrap, before any student code:
 drops to the dedicated uid (when started as root), applies the rlimits and a seccomp filter against
 network sockets, sets sys.path to the interpreter's
-standard library plus the paths the grader names, imports the trusted modules, then answers requests on the
-private pipe pair. Student output goes to fds 1 and 2, which the grader captures separately with a cap.
+standard library plus the paths the grader names (first the worker's library, grader.sandbox.exposed: the
+only simiam and grader it can import), imports the trusted modules, then answers requests on the private
+pipe pair. Student output goes to fds 1 and 2, which the grader captures separately with a cap.
 A third private pipe receives faulthandler's stack dump when the grader signals a timed-out call (SIGUSR1).
 
 Ops: "ping"; "load" -> {"modules", "errors"}; "probe" (a function of the probes module, by allow-listed
@@ -34,8 +35,9 @@ def _drop_privileges(uid: int, gid: int) -> None:
 
 
 # The trusted modules every worker needs, imported before the privilege drop and before student code.
-_PRELOAD = ("math", "faulthandler", "numpy", "simiam.control", "simiam.course.weeks", "simiam.course.loader",
-            "grader.sandbox.limits", "grader.sandbox.seccomp", "grader.sandbox.worker_loop", "ctypes")
+_PRELOAD = ("math", "faulthandler", "resource", "numpy", "simiam.control", "simiam.course.weeks",
+            "simiam.course.loader", "grader.sandbox.limits", "grader.sandbox.seccomp",
+            "grader.sandbox.worker_loop", "ctypes")
 # Standard-library modules a student may import, preloaded only when the dedicated uid cannot read the
 # Python environment (subprocess mode, interpreter under a private home directory).
 _STDLIB = ("cmath", "random", "statistics", "functools", "itertools", "collections", "copy", "time", "json",
@@ -76,7 +78,8 @@ def _bootstrap(config: dict) -> None:
     from grader.sandbox.limits import apply_rlimits
     from grader.sandbox.seccomp import install
 
-    apply_rlimits(config["rlimits"])
+    if config["rlimits"] is not None and not apply_rlimits(config["rlimits"]):
+        raise SystemExit("sandbox: the resource limits could not be applied")  # never run unlimited silently
     config["seccomp"] = install()  # no network sockets, even where bubblewrap is missing
     os.environ.clear()
     os.environ.update({"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8",

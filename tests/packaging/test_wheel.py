@@ -1,0 +1,243 @@
+"""Issue 11, done means: the wheel a student installs holds no answers, and works outside the checkout.
+
+One wheel is built from this tree and installed into one fresh virtual environment outside the checkout
+per test session (pip's cache keeps it cheap). A course folder elsewhere receives copies of
+assignments/week3 and week4, and the installed console scripts run there: the stub scores 0, the solution
+blocks pasted in score full marks, an edit outside the blocks is reported and not run, `simiam run` and
+`simiam migrate` work with the default-folder rule, and the wheel's files hold no solution block's code.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import venv
+import zipfile
+from pathlib import Path
+
+import pytest
+
+from grader.sandbox.isolation import bwrap_works
+from simiam.course.blocks import find_blocks
+from simiam.course.splice import splice
+
+REPO = Path(__file__).resolve().parents[2]
+pytestmark = pytest.mark.slow
+
+# What a wheel build needs from the tree (tests, solutions, instructor_tools and the rest stay behind).
+SOURCES = ("pyproject.toml", "README.md", "simiam", "grader")
+_JUNK = shutil.ignore_patterns("__pycache__", "*.pyc", "*.egg-info")
+
+# Files of the wheel allowed to share a line with a solution block, and why. Nothing else may.
+EXEMPT = {
+    "simiam/robot/dynamics.py": "the simulator's kinematics in the original's operation order: the "
+                                "grader's week-2 check and the week-3 ensure_w reference "
+                                "(grader/reference.py) use its uni_to_diff; it never reaches the worker "
+                                "(grader/sandbox/exposed.py)",
+}
+
+
+def _run(argv: list, cwd: Path, env: dict, timeout: float = 600) -> subprocess.CompletedProcess:
+    return subprocess.run([str(a) for a in argv], cwd=cwd, env=env, capture_output=True, text=True,
+                          timeout=timeout)
+
+
+@pytest.fixture(scope="session")
+def wheel(tmp_path_factory) -> Path:
+    """`pip wheel --no-deps` of a copy of this tree (the build writes build/ next to its sources)."""
+    base = tmp_path_factory.mktemp("wheel")
+    src = base / "src"
+    for name in SOURCES:
+        path = REPO / name
+        if path.is_dir():
+            shutil.copytree(path, src / name, ignore=_JUNK)
+        else:
+            src.mkdir(exist_ok=True)
+            shutil.copy(path, src / name)
+    done = _run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", base / "dist", src], base,
+                dict(os.environ))
+    assert done.returncode == 0, done.stdout + done.stderr
+    (found,) = (base / "dist").glob("simiam-*.whl")
+    return found
+
+
+@pytest.fixture(scope="session")
+def student(wheel: Path, tmp_path_factory) -> dict:
+    """A fresh venv with only the wheel (and its dependencies) installed; the env to run its scripts."""
+    home = tmp_path_factory.mktemp("student")
+    env_dir = home / "venv"
+    venv.EnvBuilder(with_pip=True).create(env_dir)
+    bin_dir = env_dir / "bin"
+    env = {"PATH": f"{bin_dir}:/usr/bin:/bin", "HOME": str(home), "LANG": "C.UTF-8"}
+    if "PIP_CACHE_DIR" in os.environ:
+        env["PIP_CACHE_DIR"] = os.environ["PIP_CACHE_DIR"]
+    else:
+        env["PIP_CACHE_DIR"] = str(Path.home() / ".cache" / "pip")
+    done = _run([bin_dir / "python", "-m", "pip", "install", "-q", wheel], home, env)
+    assert done.returncode == 0, done.stdout + done.stderr
+    where = _run([bin_dir / "python", "-c", "import grader, simiam; print(grader.__file__, simiam.__file__)"],
+                 home, env)
+    assert str(env_dir) in where.stdout and str(REPO) not in where.stdout, where.stdout + where.stderr
+    return {"env": env, "bin": bin_dir, "home": home}
+
+
+def _course(student: dict, name: str, weeks: tuple[int, ...] = (3,)) -> Path:
+    """A student's course folder outside the checkout holding copies of assignments/weekN."""
+    folder = student["home"] / name
+    for week in weeks:
+        shutil.copytree(REPO / "assignments" / f"week{week}", folder / f"week{week}")
+    return folder
+
+
+def _paste_solution_blocks(folder: Path, week: int) -> None:
+    """Paste every code block of solutions/weekN into the student's copy (what a student who solved the
+    week has); everything outside the blocks stays the student's file."""
+    for path in sorted(folder.glob("*.py")):
+        solution = (REPO / "solutions" / f"week{week}" / path.name).read_text()
+        result = splice(path.read_text(), solution, path.name)
+        assert not result.errors and not result.outside_edits
+        path.write_text(result.text)
+
+
+def _grade(student: dict, cwd: Path, *args: str) -> tuple[subprocess.CompletedProcess, dict]:
+    report = cwd / "result.json"  # --json: also when --check leaves the report alone
+    done = _run([student["bin"] / "grade", *args, "--out", "graded", "--json", report], cwd, student["env"])
+    assert report.is_file(), done.stdout + done.stderr
+    return done, json.loads(report.read_text())
+
+
+def test_the_stub_scores_zero_on_the_coded_parts(student: dict) -> None:
+    course = _course(student, "stub")
+    done, result = _grade(student, course, "week3")  # the folder holding week3: ./week3
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert result["status"] == "graded" and result["max_score"] > 0
+    assert [c["points"] for c in result["checks"]] == [0] * len(result["checks"])
+    assert "hidden check" in done.stdout and "run at official grading" in done.stdout
+    assert result["hidden"] is False and result["hidden_checks_not_run"] > 0
+
+
+def test_the_solution_blocks_pasted_in_score_full_marks(student: dict) -> None:
+    course = _course(student, "solved")
+    _paste_solution_blocks(course / "week3", 3)
+    done, result = _grade(student, course / "week3", "week3")  # inside the week folder
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert result["score"] == result["max_score"] > 0
+    assert result["isolation"] == ("bwrap" if bwrap_works()[0] else "subprocess")
+
+
+def test_an_edit_outside_the_blocks_is_reported_and_not_run(student: dict) -> None:
+    course = _course(student, "outside")
+    _paste_solution_blocks(course / "week3", 3)
+    controller = course / "week3" / "go_to_goal.py"
+    sabotage = "GoToGoal.execute = lambda *args, **kwargs: (0.0, 0.0)  # outside every block"
+    controller.write_text(controller.read_text() + "\n" + sabotage + "\n")
+    done, result = _grade(student, course, "week3")
+    assert result["score"] == result["max_score"], done.stdout  # the edit did not run
+    assert any("go_to_goal.py" in n and "GoToGoal.execute = lambda" in n for n in result["notices"])
+    assert "changed outside the code blocks" in done.stdout
+
+
+def test_run_and_migrate_work_in_a_course_folder(student: dict) -> None:
+    course = _course(student, "migrate", weeks=(3, 4))
+    _paste_solution_blocks(course / "week3", 3)
+    mine = course / "week3" / "go_to_goal.py"
+    mine.write_text(mine.read_text().replace("self.Kp = 2.5", "self.Kp = 3.25"))  # the student's own gain
+    done = _run([student["bin"] / "simiam", "run", "week3", "--seconds", "2"], course / "week3",
+                student["env"])
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert list((course / "week3" / "runs").glob("*.html"))
+    done = _run([student["bin"] / "simiam", "migrate", "week4", "--from", "week3"], course, student["env"])
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "moved" in done.stdout and f"into {course / 'week4'}" in done.stdout
+    assert "self.Kp = 3.25" in (course / "week4" / "go_to_goal.py").read_text()
+
+
+def test_instructor_tools_are_not_there_and_say_so(student: dict) -> None:
+    home = student["home"]
+    done = _run([student["bin"] / "grade", "week3", "--solutions"], home, student["env"])
+    assert done.returncode == 2 and "--solutions needs the course checkout" in done.stderr
+    done = _run([student["bin"] / "simiam", "bench", "--seconds", "0.1"], home, student["env"])
+    assert done.returncode == 2 and "instructor tooling in the course checkout" in done.stderr
+    done = _run([student["bin"] / "grade", "week9"], home, student["env"])
+    assert done.returncode == 2
+
+
+# The installed package sits in site-packages, next to numpy: reach it by name or by file.
+CHEAT = '''
+    import importlib.util
+    import os
+
+    import numpy
+
+    site = os.path.dirname(os.path.dirname(numpy.__file__))
+    try:
+        import grader.reference as ref
+    except ImportError:
+        ref = None
+    path = os.path.join(site, 'grader', 'reference.py')
+    if ref is None and os.path.exists(path):
+        spec = importlib.util.spec_from_file_location('stolen', path)
+        ref = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(ref)
+    vel_r, vel_l = ref.dynamics.uni_to_diff(R, L, v, w) if ref else (0, 0)
+'''
+
+
+@pytest.mark.skipif(not bwrap_works()[0], reason="only bubblewrap hides files; subprocess mode says so")
+def test_the_installed_reference_code_is_out_of_reach_of_student_code(student: dict) -> None:
+    course = _course(student, "cheat", weeks=(2,))
+    drive = course / "week2" / "differential_drive.py"
+    text = drive.read_text()
+    (block,) = [b for b in find_blocks(text, drive.name) if b.scope == "uni_to_diff"]
+    lines = text.splitlines(keepends=True)
+    drive.write_text("".join(lines[:block.start_line] + [CHEAT.lstrip("\n")] + lines[block.end_line - 1:]))
+    done, result = _grade(student, course, "week2", "--check", "week2.uni_to_diff.round_trip")
+    check = result["checks"][0]
+    assert check["points"] == 0 and "your vel_r was 0" in check["message"], done.stdout
+
+
+def _solution_lines() -> dict[str, str]:
+    """Every code line inside a block of solutions/ (normalised), with where it comes from; lines the
+    course gives students outside the blocks anyway (provided code) and bare keywords are left out."""
+    provided: set[str] = set()
+    for stub in REPO.glob("assignments/week*/*.py"):
+        text = stub.read_text()
+        inside = {n for b in find_blocks(text, stub.name) for n in range(b.start_line + 1, b.end_line)}
+        provided.update(_norm(ln) for n, ln in enumerate(text.splitlines(), 1) if n not in inside)
+    out = {}
+    for path in sorted(REPO.glob("solutions/week*/*.py")):
+        for b in find_blocks(path.read_text(), path.name):
+            for line in b.body.splitlines():
+                code = _norm(line)
+                trivial = not code or code.startswith("#") or re.fullmatch(r"\w+:", code)
+                if not trivial and code not in provided:
+                    out[code] = f"{path.relative_to(REPO)} {b.describe()}"
+    return out
+
+
+def _norm(line: str) -> str:
+    return re.sub(r"\s+", " ", line.split("  #")[0]).strip()
+
+
+def test_the_wheel_holds_no_answers(wheel: Path) -> None:
+    answers = _solution_lines()
+    assert len(answers) > 40  # the search has something to find
+    with zipfile.ZipFile(wheel) as z:
+        names = z.namelist()
+        assert not [n for n in names if n.startswith(("solutions/", "assignments/", "instructor_tools/",
+                                                      "tests/"))]
+        assert not [n for n in names if "reference_brains" in n or "hidden/" in n and n.endswith(".json")]
+        assert any(n.startswith("simiam/course/skeletons/week4/") for n in names)
+        hits = {}
+        for name in names:
+            text = z.read(name).decode("utf-8", errors="replace")
+            found = {_norm(ln) for ln in text.splitlines()} & answers.keys()
+            if found:
+                hits[name] = sorted(found)
+    assert set(hits) <= set(EXEMPT), {n: h for n, h in hits.items() if n not in EXEMPT}
+    assert hits.get("simiam/robot/dynamics.py", []) == sorted(
+        ["vel_r = (2 * v + w * L) / (2 * R)", "vel_l = (2 * v - w * L) / (2 * R)"])
