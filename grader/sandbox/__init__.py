@@ -5,7 +5,8 @@
         session.load(); session.call("probe", name=..., args={...}); session.isolation_note
 
 Modules: protocol (JSON lines on a private pipe pair), worker + worker_loop (inside the sandbox),
-isolation (bubblewrap or plain subprocess, dedicated uid), runner (start, deadlines, kill the whole tree),
+isolation (bubblewrap or plain subprocess, dedicated uid), exposed (what the worker can import),
+capabilities (what this system offers), runner (start, deadlines, kill the whole tree),
 output (capped capture of stdout/stderr), limits (rlimits), workdir (private copy of the spliced folder),
 session (StudentSession, RemoteBrain), validate (type checks on untrusted values), errors, bench.
 
@@ -13,9 +14,12 @@ What holds in every mode: the grading process never imports student code; only s
 and the grader validates it; per-call and per-submission wall limits, RLIMIT_CPU/AS/FSIZE/NOFILE/NPROC,
 no core dumps; output capped; a clean environment; as root, a dedicated unprivileged uid per worker, so the
 process limit binds and every process the student starts (setsid, double fork) is killed by uid.
-With bubblewrap in addition: no network, own PID/IPC/UTS namespaces, private size-capped /tmp, read-only
-view of only the submission copy, the Python environment, simiam and the grader's probe/sandbox modules
-(no solutions/, hidden checks, output folder or other submissions), no capabilities.
+In every mode the worker imports simiam and grader only from its own library (exposed: the student-facing
+framework and the worker's code, no reference implementation of any student block), and its seccomp filter
+forbids new processes, so the memory limit is per submission. With bubblewrap in addition: no network, own
+PID/IPC/UTS namespaces, private size-capped /tmp, read-only view of only the submission copy, the Python
+environment and that library (no solutions/, reference code, hidden checks, output folder or other
+submissions), no capabilities. Without parts of this (capabilities), results say "local check only".
 """
 
 from grader.sandbox.errors import SandboxError, SandboxUnavailable, StudentError, StudentTimeout, WorkerDied

@@ -37,7 +37,7 @@ NOTES = {
            "spliced submission, the Python environment and the course's student-facing modules (no "
            "reference code), an unprivileged uid and a seccomp filter; limits on time, memory, processes, "
            "files and output.",
-    SUBPROCESS: "no bubblewrap: student code runs in a separate, resource-limited process{uid}{net}; it is "
+    SUBPROCESS: "no bubblewrap: student code runs in a separate{limited} process{uid}{net}; it is "
                 "killed with its whole process tree, and only JSON crosses back; it can import only the "
                 "course's student-facing modules, but it can read what its user can read (for example "
                 "solutions/ or the grader's files if they are world-readable) and write to /tmp while it "
@@ -265,22 +265,23 @@ def describe(mode: str) -> str:
     from grader.sandbox.capabilities import local_only_note, missing
 
     items = missing(*bwrap_works())
-    if items:
-        return local_only_note(items)
-    return _describe_subprocess()
+    details = _describe_subprocess()
+    return f"{local_only_note(items)} In detail: {details[0].lower()}{details[1:]}" if items else details
 
 
 def _describe_subprocess() -> str:
+    from grader.sandbox.capabilities import has_module
     from grader.sandbox.seccomp import available
 
+    limited = ", resource-limited" if has_module("resource") else ""
+    note = functools.partial(NOTES[SUBPROCESS].format, limited=limited)
     net = " with network sockets blocked by a seccomp filter" if available() else " with network access"
     if os.geteuid() != 0:
-        return NOTES[SUBPROCESS].format(net=net, uid=" under your own user, so it could also signal the "
-                                        "grader, write where you can write and leave processes behind: "
-                                        "treat this result as advisory")
+        return note(net=net, uid=" under your own user, so it could also signal the grader, write where you "
+                    "can write and leave processes behind: treat this result as advisory")
     if _uid_range()[1] - _uid_range()[0] < 1000:
-        return NOTES[SUBPROCESS].format(net=net, uid=" that stays root (no spare uid is mapped here, so the "
-                                        "process limit does not bind and files root can write are writable)")
+        return note(net=net, uid=" that stays root (no spare uid is mapped here, so the process limit does "
+                    "not bind and files root can write are writable)")
     env_note = " (the Python environment is private to root here, so only modules preloaded before the " \
                "drop can be imported)" if _private_env() else ""
-    return NOTES[SUBPROCESS].format(net=net, uid=f" under its own unprivileged uid{env_note}")
+    return note(net=net, uid=f" under its own unprivileged uid{env_note}")
