@@ -46,6 +46,18 @@ def _run(argv: list, cwd: Path, env: dict, timeout: float = 600) -> subprocess.C
                           timeout=timeout)
 
 
+def _isolation() -> list[str]:
+    """--no-build-isolation when this environment can build already (setuptools >= 68 and wheel), so the
+    build downloads nothing; otherwise pip fetches them into an isolated build environment (from its cache
+    after the first time)."""
+    try:
+        import setuptools
+        import wheel  # noqa: F401
+    except ImportError:
+        return []
+    return ["--no-build-isolation"] if int(setuptools.__version__.split(".")[0]) >= 68 else []
+
+
 @pytest.fixture(scope="session")
 def wheel(tmp_path_factory) -> Path:
     """`pip wheel --no-deps` of a copy of this tree (the build writes build/ next to its sources)."""
@@ -58,8 +70,8 @@ def wheel(tmp_path_factory) -> Path:
         else:
             src.mkdir(exist_ok=True)
             shutil.copy(path, src / name)
-    done = _run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", base / "dist", src], base,
-                dict(os.environ))
+    done = _run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", *_isolation(), "-w", base / "dist",
+                 src], base, dict(os.environ))
     assert done.returncode == 0, done.stdout + done.stderr
     (found,) = (base / "dist").glob("simiam-*.whl")
     return found
