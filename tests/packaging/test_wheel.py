@@ -23,6 +23,7 @@ import pytest
 
 from grader.sandbox.isolation import bwrap_works
 from simiam.course.blocks import find_blocks
+from simiam.course.placeholders import PLACEHOLDERS
 from simiam.course.splice import splice
 
 REPO = Path(__file__).resolve().parents[2]
@@ -214,8 +215,9 @@ def test_the_installed_reference_code_is_out_of_reach_of_student_code(student: d
 
 def _solution_lines() -> dict[str, str]:
     """Every code line inside a block of solutions/ (normalised), with where it comes from; lines the
-    course gives students outside the blocks anyway (provided code) and bare keywords are left out."""
-    provided: set[str] = set()
+    course gives every student anyway (provided code outside the blocks, the placeholders' code) and bare
+    keywords are left out."""
+    provided = {_norm(ln) for p in PLACEHOLDERS for ln in p.code.splitlines()}
     for stub in REPO.glob("assignments/week*/*.py"):
         text = stub.read_text()
         inside = {n for b in find_blocks(text, stub.name) for n in range(b.start_line + 1, b.end_line)}
