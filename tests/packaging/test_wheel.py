@@ -86,11 +86,10 @@ def student(wheel: Path, tmp_path_factory) -> dict:
     venv.EnvBuilder(with_pip=True).create(env_dir)
     bin_dir = env_dir / "bin"
     env = {"PATH": f"{bin_dir}:/usr/bin:/bin", "HOME": str(home), "LANG": "C.UTF-8"}
-    if "PIP_CACHE_DIR" in os.environ:
-        env["PIP_CACHE_DIR"] = os.environ["PIP_CACHE_DIR"]
-    else:
-        env["PIP_CACHE_DIR"] = str(Path.home() / ".cache" / "pip")
-    done = _run([bin_dir / "python", "-m", "pip", "install", "-q", wheel], home, env)
+    # pip itself runs with this machine's settings (index, proxy, cache); the student's commands do not
+    pip_env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME")}
+    pip_env["PATH"] = env["PATH"]
+    done = _run([bin_dir / "python", "-m", "pip", "install", "-q", wheel], home, pip_env)
     assert done.returncode == 0, done.stdout + done.stderr
     where = _run([bin_dir / "python", "-c", "import grader, simiam; print(grader.__file__, simiam.__file__)"],
                  home, env)
