@@ -45,3 +45,16 @@ def local_only_note(items: list[str]) -> str:
     """The sentence every result carries when `items` (from `missing`) is not empty."""
     return (f"{LOCAL_ONLY}: your code ran in a plain subprocess on {sys.platform} with "
             + "; ".join(items) + ". Official grading runs it in the full sandbox.")
+
+
+LIMIT_NAMES = ("core dumps", "CPU time", "memory", "file size", "open files", "processes")
+
+
+def with_refused_limits(note: str, refused: object) -> str:
+    """`note` with the kernel limits the worker's system refused (from its ready message, sent before any
+    student code; only known names are kept) put first, as "local check only: ..."."""
+    names = [n for n in LIMIT_NAMES if isinstance(refused, list) and n in refused]
+    if not names:
+        return note
+    rest = note[len(LOCAL_ONLY) + 2:] if note.startswith(LOCAL_ONLY + ": ") else note
+    return f"{LOCAL_ONLY}: this system refused these kernel limits: {', '.join(names)}. {rest}"

@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from grader.sandbox import isolation
-from grader.sandbox.capabilities import has_module
+from grader.sandbox.capabilities import has_module, with_refused_limits
 from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeout, WorkerDied
 from grader.sandbox.exposed import build_library
 from grader.sandbox.limits import Limits
@@ -56,7 +56,7 @@ class StudentSession:
         self._outputs: list[CappedText] = []
         self._load: dict | None = None
         self._load_death: WorkerDied | None = None
-        self.isolation_note = isolation.describe(self.isolation)
+        self.isolation_note = self._base_note = isolation.describe(self.isolation)
         self.seconds_used = 0.0      # wall time of calls, counted against limits.total_seconds
         self.calls = 0
         self.starts = 0
@@ -131,6 +131,8 @@ class StudentSession:
             raise WorkerDied(f"the sandbox did not start: {exc.message}. "
                              f"Output: {self.output()[-500:]}") from None
         self.start_seconds.append(time.monotonic() - began)
+        refused = self._worker.ready.get("refused_limits")
+        self.isolation_note = with_refused_limits(self._base_note, refused)  # the same after a restart
         try:
             value = self._request("load", {}, None)
         except (WorkerDied, StudentTimeout) as exc:

@@ -78,8 +78,10 @@ def _bootstrap(config: dict) -> None:
     from grader.sandbox.limits import apply_rlimits
     from grader.sandbox.seccomp import install
 
-    if config["rlimits"] is not None and not apply_rlimits(config["rlimits"]):
+    refused = apply_rlimits(config["rlimits"])
+    if config["rlimits"] is not None and refused is None:
         raise SystemExit("sandbox: the resource limits could not be applied")  # never run unlimited silently
+    config["refused_limits"] = refused or []  # reported in the ready message, before any student code
     config["seccomp"] = install()  # no network sockets, even where bubblewrap is missing
     os.environ.clear()
     os.environ.update({"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8",

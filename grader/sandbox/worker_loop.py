@@ -123,7 +123,8 @@ def serve(config: dict) -> None:
     worker = _Worker(config)
     _send(fd_out, {"id": 0, "ok": True, "value": {"pid": os.getpid(), "uid": os.getuid(),
                                                   "thread": threading.get_ident(),
-                                                  "seccomp": bool(config.get("seccomp"))}})
+                                                  "seccomp": bool(config.get("seccomp")),
+                                                  "refused_limits": config.get("refused_limits", [])}})
     reader = LineReader()
     while True:
         line = reader.pop_line()

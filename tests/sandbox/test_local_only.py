@@ -73,4 +73,40 @@ def test_the_worker_side_imports_without_resource_or_fcntl() -> None:
     done = subprocess.run([sys.executable, "-I", "-c", code], capture_output=True, text=True, timeout=60,
                           env={"PATH": os.environ.get("PATH", "")})
     assert done.returncode == 0, done.stderr
-    assert done.stdout.strip() == "False"  # nothing to set, and it says so
+    assert done.stdout.strip() == "None"  # nothing to set, and it says so
+
+
+REFUSING = """
+import sys
+sys.path[:0] = {paths!r}
+import resource
+real = resource.setrlimit
+
+def refuse_memory(which, limits):  # what a system that does not support RLIMIT_AS does
+    if which == resource.RLIMIT_AS:
+        raise ValueError("not allowed to raise maximum limit")
+    real(which, limits)
+
+resource.setrlimit = refuse_memory
+from grader.sandbox.limits import apply_rlimits
+print(apply_rlimits({{"cpu": 5, "memory": 1 << 30, "file": 1 << 20, "open_files": 64, "processes": 64}}))
+print(resource.getrlimit(resource.RLIMIT_FSIZE)[0])
+"""
+
+
+def test_a_limit_the_system_refuses_is_named_and_the_others_still_apply() -> None:
+    """macOS may refuse RLIMIT_AS: the worker still starts, with every other limit, and says which."""
+    code = REFUSING.format(paths=[str(Path(grader.__file__).resolve().parents[1])])
+    done = subprocess.run([sys.executable, "-I", "-c", code], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["['memory']", str(1 << 20)]
+
+
+def test_refused_limits_lead_the_note() -> None:
+    from grader.sandbox.capabilities import with_refused_limits
+
+    assert with_refused_limits("bubblewrap sandbox: ...", ["memory", "<script>"]) == (
+        "local check only: this system refused these kernel limits: memory. bubblewrap sandbox: ...")
+    assert with_refused_limits("local check only: no seccomp. X", ["processes"]).startswith(
+        "local check only: this system refused these kernel limits: processes. no seccomp. X")
+    assert with_refused_limits("note", "memory") == "note"  # not a list: ignored
