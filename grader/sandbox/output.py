@@ -84,3 +84,19 @@ def _pending(fd: int) -> int:
         return struct.unpack("i", fcntl.ioctl(fd, termios.FIONREAD, b"\0\0\0\0"))[0]
     except OSError:
         return 0
+
+
+def cut_middle(text: str, limit: int) -> str:
+    """`text` in at most about `limit` characters: its first and last lines, with the middle replaced by a
+    note of how much was cut. The first lines say what the code printed first (where a student looks for
+    their debug output), the last ones what it printed just before it stopped."""
+    if len(text) <= limit:
+        return text
+    head, tail = text[: limit // 2], text[len(text) - limit // 2:]
+    # whole lines where that loses little: a cut inside a line reads as a wrong value
+    if "\n" in head[len(head) // 2:]:
+        head = head[: head.rindex("\n") + 1]
+    if "\n" in tail[: len(tail) // 2]:
+        tail = tail[tail.index("\n") + 1:]
+    cut = len(text) - len(head) - len(tail)
+    return f"{head.rstrip(chr(10))}\n[... {cut} characters cut here ...]\n{tail}"

@@ -40,7 +40,7 @@ def test_summary_and_checks_table(week3_result):
                  "hidden variants", "1 passed, 2 failed, 1 error"):
         assert text in html, text
     rows = re.findall(r"<tr class=\"(passed|failed|error|timeout)\">", html)
-    assert rows == ["passed", "failed", "failed", "error"]
+    assert rows == ["failed", "failed", "error", "passed"]  # failures first, in the declared order
     assert 'href="#check-week3.pid.integral"' in html and 'id="check-week3.pid.integral"' in html
 
 
@@ -112,7 +112,7 @@ def test_invalid_submission_and_broken_traces(week3_result):
     assert "go_to_goal.py line 3: invalid syntax" in html and "badge invalid" in html
     empty = {"format": "simiam-trace/1", "week": 3, "robot": {}, "steps": {"t": []}, "world": {}}
     html = render_report(result, {"week3.go_to_goal.reaches_goals": empty})
-    assert "stopped before its first step" in html
+    assert "ended before the robot's first step" in html
 
 
 def test_metric_formatting():

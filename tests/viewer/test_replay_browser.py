@@ -1,4 +1,6 @@
 """The replay page in headless Chromium: it plays, zooms, pans, follows and seeks like the original GUI."""
+# Predicates are arrow functions, not bare expressions: playwright evaluates a bare expression string with
+# eval(), which the page's Content-Security-Policy (no unsafe-eval) refuses.
 
 from __future__ import annotations
 
@@ -30,7 +32,7 @@ def plays_and_moves(page) -> bool:
     before = state(page)
     page.click("#btn-play")
     try:
-        page.wait_for_function("window.simiam.state().t > 1.0", timeout=3_000)
+        page.wait_for_function("() => window.simiam.state().t > 1.0", timeout=3_000)
     except Exception:
         return False
     after = state(page)
@@ -47,7 +49,7 @@ def follows(page) -> bool:
         return False
     page.evaluate("window.simiam.play()")
     try:
-        page.wait_for_function("window.simiam.state().t > 3.0", timeout=3_000)
+        page.wait_for_function("() => window.simiam.state().t > 3.0", timeout=3_000)
     except Exception:
         return False
     s = state(page)
@@ -63,7 +65,7 @@ def wheel_zooms(page) -> bool:
     page.mouse.move(x + 40, y + 30)
     page.mouse.wheel(0, -400)
     try:
-        page.wait_for_function(f"window.simiam.state().zoom > {z0} * 1.2", timeout=2_000)
+        page.wait_for_function(f"() => window.simiam.state().zoom > {z0} * 1.2", timeout=2_000)
     except Exception:
         return False
     return True
