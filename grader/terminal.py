@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import re
+import sys
 import textwrap
 import unicodedata
 from typing import TextIO
@@ -25,10 +26,13 @@ _SUSPECT = re.compile(r"[^\n\t -~]")
 _HIDDEN = {"Cc", "Cf", "Cs", "Zl", "Zp"}
 _COLOURS = {"ok": "32", "FAIL": "1;31", "ERROR": "33", "TIMEOUT": "35", "bold": "1", "dim": "2"}
 _MARK = {"passed": "ok", "failed": "FAIL", "error": "ERROR", "timeout": "TIMEOUT"}
+_NAMED = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
 _WORDS = {"failed": "failed", "error": "error", "timeout": "timed out"}
 
 
 def _escape(ch: str) -> str:
+    if ch in _NAMED:
+        return _NAMED[ch]
     cp = ord(ch)
     return f"\\x{cp:02x}" if cp < 0x100 else f"\\u{cp:04x}" if cp < 0x10000 else f"\\U{cp:08x}"
 
@@ -45,7 +49,7 @@ def printable(text: object, *, multiline: bool = True) -> str:
     def one(match: re.Match) -> str:
         ch = match.group()
         if ch == "\n" or ch == "\t":
-            return ch if multiline else (" " if ch == "\t" else "\\n")
+            return ch if multiline else (" " if ch == "\t" else _NAMED[ch])
         return _escape(ch) if unicodedata.category(ch) in _HIDDEN else ch
 
     pattern = _SUSPECT if multiline else re.compile(r"[^ -~]")
@@ -96,9 +100,8 @@ class Printer:
 
 def print_result(result: dict, out: TextIO | None = None) -> None:
     """The terminal table of one result: one line per passed check; a failed one with its message and
-    the replay line; the total, then what did not pass, so the end of the output says what to fix."""
-    import sys
-
+    the replay line; then the notes, what did not pass and the total, so that the end of the output (what
+    a student sees first) says what to fix."""
     p = Printer(out if out is not None else sys.stdout)
     one = _one
     p.wrapped(f"week {one(result.get('week'))}: {one(result.get('submission', ''))}  (seed "
@@ -124,6 +127,14 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
         if replay:
             # not wrapped: a command is copied and pasted whole (the terminal folds the long line)
             p.line(f"{indent}replay: {one(replay)}")
+    for note in result.get("notices") or []:
+        p.wrapped(f"note: {note}", "  ")
+    if not result.get("hidden"):
+        n = result.get("hidden_checks_not_run", 0)
+        ran = result.get("visible_checks", len(checks))
+        p.wrapped(f"{_count(ran, 'visible check')} ran here"
+                  + (f"; {_count(n, 'hidden check')} (other goals, other worlds, drawn per seed) run at "
+                     "official grading" if n else ""), "  ")
     lost = [c for c in checks if c.get("status") != "passed"]
     if lost:  # the end of the output is what a student sees first: what to fix, in the table's order
         p.line(f"  not passed ({len(lost)} of {len(checks)}):")
@@ -135,14 +146,6 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
         p.line(f"  all {_count(len(checks), 'check')} passed")
     p.line(p.paint(f"  total: {_points(result.get('score'), 'g')} / {_points(result.get('max_score'), 'g')}",
                    "bold"))
-    for note in result.get("notices") or []:
-        p.wrapped(f"note: {note}", "  ")
-    if not result.get("hidden"):
-        n = result.get("hidden_checks_not_run", 0)
-        ran = result.get("visible_checks", len(checks))
-        p.wrapped(f"{_count(ran, 'visible check')} ran here"
-                  + (f"; {_count(n, 'hidden check')} (other goals, other worlds, drawn per seed) run at "
-                     "official grading" if n else ""), "  ")
 
 
 def _one(value: object) -> str:
