@@ -23,7 +23,10 @@ from browser import chromium_context  # noqa: E402
 
 MARKUP_ID = "<img src=x onerror=window.__pwned=6>"          # a folder name that is markup
 ERROR_ID = "error<svg onload=window.__pwned=7>"             # markup again: the student whose code raises
-TERMINAL_ID = "\x1b]0;owned\x07\x1b[2Jansi\r\u202eid"         # a folder name that is terminal escapes
+TERMINAL_ID = "\x1b]0;owned\x07\x1b[2Jansi\r\u202eid<svg onload=window.__pwned=8>"  # escapes and markup
+# prints (1), state name (3), exception text (5), the three folder names (6, 7, 8)
+SENTINELS = ("window.__pwned = 1", "window.__pwned=3", "window.__pwned=5", "window.__pwned=6",
+             "window.__pwned=7", "window.__pwned=8")
 # Run in every frame before the page's own scripts: any student script that runs leaves a trace here.
 HOOKS = """window.__pwned = null; window.__alerts = [];
 for (const name of ["alert", "confirm", "prompt", "print"]) {
@@ -62,7 +65,7 @@ def test_the_batch_prints_student_text_only_as_visible_escapes(hostile_class) ->
     _, err, code = hostile_class
     assert code == 1  # graded, but not everyone
     assert raw_controls(err) == []
-    assert "\\x1b]0;owned\\x07\\x1b[2Jansi\\r\\u202eid" in err  # the id is shown, visibly escaped
+    assert "\\x1b]0;owned\\x07\\x1b[2Jansi\\r\\u202eid<svg" in err  # the id is shown, visibly escaped
     assert raw_controls("\x1b[2J\r\u202e") == ["'\\x1b'", "'\\r'", "'\\u202e'"]  # the check can fail
 
 
@@ -129,13 +132,11 @@ def test_no_page_runs_student_text_even_without_csp(hostile_class, escaping_only
         assert injected(page) == [], path.name
         text = page.inner_text("body") + "".join(f.evaluate("() => document.body.innerText")
                                                  for f in page.frames[1:])
-        seen |= {s for s in ("window.__pwned = 1", "window.__pwned=3", "window.__pwned=5", "window.__pwned=6",
-                             "window.__pwned=7") if s in text}
+        seen |= {s for s in SENTINELS if s in text}
         page.close()
     assert len(pages(out)) == 4  # three students and summary.html
     # every hostile text was shown to its reader, as text: prints, state name, exception, both ids
-    assert seen == {"window.__pwned = 1", "window.__pwned=3", "window.__pwned=5", "window.__pwned=6",
-                    "window.__pwned=7"}
+    assert seen == set(SENTINELS)
 
 
 def _post_render_replace():
