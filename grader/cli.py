@@ -19,7 +19,8 @@ from pathlib import Path
 
 from grader.grading import DEFAULT_SEED, CourseFilesMissing, grade_submission
 from grader.result import all_passed
-from grader.terminal import print_result, printable
+from grader.terminal import print_result
+from grader.untrusted import printable
 from simiam.course.folders import WeekFolderNotFound, week_folder
 
 __all__ = ["main", "print_result"]

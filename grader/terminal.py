@@ -1,59 +1,22 @@
-"""What `grade` prints on a terminal: untrusted text made printable, colour only where it helps, and the
-per-check table of one result.
+"""What `grade` prints on a terminal: the per-check table of one result, wrapped to the terminal's width,
+coloured only on a terminal.
 
-Student code, file and folder names, exception messages and printed output are untrusted: printed raw,
-an escape sequence could recolour or clear the screen, move the cursor, retitle the window, hide a line
-behind a carriage return or reorder text with a bidi override, so that a FAIL reads as "ok". `printable`
-shows every such character as a visible escape (`\\x1b`, `\\u202e`) instead. Everything the grader prints
-that a student can influence goes through it: the table here, the command's error lines and the batch's
-progress messages (grader.batch.progress).
+Everything in it that a student can influence (names, paths, messages, replay lines) goes through
+grader.untrusted.printable, as do the command's error lines and the batch's progress messages.
 """
 
 from __future__ import annotations
 
 import os
-import re
 import sys
 import textwrap
-import unicodedata
 from typing import TextIO
 
-# Anything outside printable ASCII is looked at one character at a time (most text never gets there).
-_SUSPECT = re.compile(r"[^\n\t -~]")
-# Unicode categories that print nothing visible of their own but act on the terminal or on the text
-# around them: controls (C0, DEL, C1 including CSI and OSC), format characters (bidi overrides and
-# isolates, zero-width characters), lone surrogates, line and paragraph separators.
-_HIDDEN = {"Cc", "Cf", "Cs", "Zl", "Zp"}
+from grader.untrusted import printable
+
 _COLOURS = {"ok": "32", "FAIL": "1;31", "ERROR": "33", "TIMEOUT": "35", "bold": "1", "dim": "2"}
 _MARK = {"passed": "ok", "failed": "FAIL", "error": "ERROR", "timeout": "TIMEOUT"}
-_NAMED = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
 _WORDS = {"failed": "failed", "error": "error", "timeout": "timed out"}
-
-
-def _escape(ch: str) -> str:
-    if ch in _NAMED:
-        return _NAMED[ch]
-    cp = ord(ch)
-    return f"\\x{cp:02x}" if cp < 0x100 else f"\\u{cp:04x}" if cp < 0x10000 else f"\\U{cp:08x}"
-
-
-def printable(text: object, *, multiline: bool = True) -> str:
-    """`text` (any object, as `str()`) safe to print on a terminal: control characters (escape sequences,
-    carriage return, backspace, bell), format characters (bidi overrides, zero-width) and lone surrogates
-    become visible escapes such as `\\x1b`. Newlines stay when `multiline` (Windows line ends become
-    plain ones); otherwise they show as `\\n` and tabs become spaces, for text that must stay on one line."""
-    text = str(text)
-    if multiline:
-        text = text.replace("\r\n", "\n")
-
-    def one(match: re.Match) -> str:
-        ch = match.group()
-        if ch == "\n" or ch == "\t":
-            return ch if multiline else (" " if ch == "\t" else _NAMED[ch])
-        return _escape(ch) if unicodedata.category(ch) in _HIDDEN else ch
-
-    pattern = _SUSPECT if multiline else re.compile(r"[^ -~]")
-    return pattern.sub(one, text)
 
 
 def use_colour(stream: TextIO) -> bool:

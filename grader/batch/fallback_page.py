@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from jinja2 import Environment
 
-from grader.report.html import STATIC_PAGE_CSP
+from grader.report.html import STATIC_PAGE_CSP, shown
 
 _ADVICE = {
     "invalid": "The submission could not be graded as it is. Fix what the message says and submit again.",
@@ -36,7 +36,7 @@ td.msg{white-space:pre-wrap;overflow-wrap:anywhere}</style></head><body>
 </body></html>
 """
 
-_env = Environment(autoescape=True)
+_env = Environment(autoescape=True, finalize=shown)
 
 
 def fallback_page(student_id: str, result: dict) -> str:

@@ -11,7 +11,7 @@ import time
 from collections.abc import Callable
 from typing import TextIO
 
-from grader.terminal import printable
+from grader.untrusted import printable
 
 COUNTED = ("graded", "invalid", "timeout", "crashed", "skipped")
 MESSAGE_CHARS = 400  # a student's message in the log: the rest is in their report

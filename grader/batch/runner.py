@@ -38,7 +38,7 @@ from grader.batch.progress import Progress
 from grader.batch.store import OutputBusy, exclusive, read_json, student_stem, write_atomic, write_json
 from grader.batch.submissions import Student, Submission, discover, pack, read_submission
 from grader.batch.summary import write_summary
-from grader.terminal import printable
+from grader.untrusted import printable
 
 # grade_submission bounds each student check with its own timeouts; this budget only catches a grading
 # process that hangs or thrashes as a whole.

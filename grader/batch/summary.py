@@ -16,7 +16,7 @@ from jinja2 import Environment
 
 from grader.batch.exports import check_ids, class_max_score
 from grader.batch.store import write_atomic
-from grader.report.html import STATIC_PAGE_CSP, run_anchor
+from grader.report.html import STATIC_PAGE_CSP, run_anchor, shown
 from grader.report.svg import histogram_svg, pass_rate_svg
 
 
@@ -110,7 +110,7 @@ title="{{ r.title }}"{% if r.failed %} class="failed"{% endif %}>{{ r.text }}</a
 </body></html>
 """
 
-_env = Environment(autoescape=True)
+_env = Environment(autoescape=True, finalize=shown)
 
 
 def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) -> str:

@@ -5,8 +5,10 @@ the contract's result JSON; `traces` maps trace keys to Seam-2 traces (dicts). A
 `traces[check_id]`, `traces[check_id + "#2"]`, ... (what `grader.scenarios.keep` stores), or under the names
 listed in `details["traces"]`. Run k of a check lines up with `details["runs"][k]` for its metrics.
 
-Everything a student controls (messages, details, printed output, the submission name) is escaped by
-jinja2's autoescape; the plots are inline SVG built from numbers (grader.report.svg), readable offline.
+Everything a student controls (messages, details, printed output, the submission name) reaches the page
+only through the template: made visible by `printable` (the `finalize` hook) and escaped by jinja2's
+autoescape, never pasted into rendered HTML; the page's Content-Security-Policy lets no script run but the
+embedded replays' own. The plots are inline SVG built from numbers (grader.report.svg), readable offline.
 Each scenario run gets an embedded replay (simiam.viewer.replay in an iframe `srcdoc`), thinned so that
 the report stays small; `replays="files"` writes the replay pages next to the report and links them.
 """
@@ -20,8 +22,10 @@ from pathlib import Path
 from typing import Any
 
 import jinja2
+from markupsafe import Markup
 
 from grader.report import svg
+from grader.untrusted import printable
 
 # Metrics the scenario checks report, in the order shown, with how to print them.
 METRICS: dict[str, tuple[str, str]] = {
@@ -47,9 +51,17 @@ STATUS_WORDS = {"passed": "passed", "failed": "failed", "error": "error", "timeo
 STATIC_PAGE_CSP = "default-src 'none'; style-src 'unsafe-inline'; base-uri 'none'; form-action 'none'"
 
 
+def shown(value: Any) -> Any:
+    """The templates' `finalize`: every plain string a page shows goes through `printable` (a student's
+    bidi override or escape sequence is shown, not obeyed), then autoescape. Markup (the plots, text the
+    template escaped itself with `|e`) passes as it is."""
+    return printable(value) if isinstance(value, str) and not isinstance(value, Markup) else value
+
+
 def _env() -> jinja2.Environment:
     env = jinja2.Environment(loader=jinja2.PackageLoader("grader.report", "templates"), autoescape=True,
-                             undefined=jinja2.ChainableUndefined, trim_blocks=True, lstrip_blocks=True)
+                             undefined=jinja2.ChainableUndefined, trim_blocks=True, lstrip_blocks=True,
+                             finalize=shown)
     env.filters["num"] = _num
     return env
 

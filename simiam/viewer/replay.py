@@ -178,12 +178,20 @@ def content_security_policy() -> str:
             "img-src data:; base-uri 'none'; form-action 'none'")
 
 
+def _encodable(value: Any) -> Any:
+    if isinstance(value, str) and not isinstance(value, Markup):
+        return value.encode("utf-8", "backslashreplace").decode("utf-8")
+    return value
+
+
 def _env() -> jinja2.Environment:
-    env = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined)
+    # a title from a file name that is not UTF-8 (lone surrogates) is shown escaped, not a crash
+    env = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined, finalize=_encodable)
     # the trace goes into a <script type="application/json"> through jinja2's tojson, which escapes < > & '
-    # so that no text inside (a student's state name: "</script>", "<!--") can end or change the element
+    # so that no text inside (a student's state name: "</script>", "<!--") can end or change the element;
+    # ASCII-only, so that any text (lone surrogates too) is written as \u escapes JSON.parse reads back
     env.policies["json.dumps_kwargs"] = {"separators": (",", ":"), "allow_nan": False,
-                                         "ensure_ascii": False, "sort_keys": False}
+                                         "ensure_ascii": True, "sort_keys": False}
     return env
 
 

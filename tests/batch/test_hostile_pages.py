@@ -27,6 +27,7 @@ TERMINAL_ID = "\x1b]0;owned\x07\x1b[2Jansi\r\u202eid<svg onload=window.__pwned=8
 # prints (1), state name (3), exception text (5), the three folder names (6, 7, 8)
 SENTINELS = ("window.__pwned = 1", "window.__pwned=3", "window.__pwned=5", "window.__pwned=6",
              "window.__pwned=7", "window.__pwned=8")
+HIDDEN = ("Cc", "Cf", "Cs", "Zl", "Zp")  # controls, format (bidi, zero-width), surrogates, separators
 # Run in every frame before the page's own scripts: any student script that runs leaves a trace here.
 HOOKS = """window.__pwned = null; window.__alerts = [];
 for (const name of ["alert", "confirm", "prompt", "print"]) {
@@ -58,7 +59,7 @@ def pages(out: Path) -> list[Path]:
 def raw_controls(text: str) -> list[str]:
     """Characters that would act on a terminal (controls other than newline, bidi and other format
     characters), as a list to show in the failure."""
-    return [repr(c) for c in text if c != "\n" and unicodedata.category(c) in ("Cc", "Cf", "Cs", "Zl", "Zp")]
+    return [repr(c) for c in text if c != "\n" and unicodedata.category(c) in HIDDEN]
 
 
 def test_the_batch_prints_student_text_only_as_visible_escapes(hostile_class) -> None:
@@ -121,7 +122,7 @@ def csp_browser():
 def test_no_page_runs_student_text_even_without_csp(hostile_class, escaping_only_browser) -> None:
     out, _, _ = hostile_class
     escaping_only_browser.add_init_script(HOOKS)
-    seen = set()
+    seen, visible = set(), set()
     for path in pages(out):
         page = escaping_only_browser.new_page()
         page.goto(path.resolve().as_uri())
@@ -133,10 +134,14 @@ def test_no_page_runs_student_text_even_without_csp(hostile_class, escaping_only
         text = page.inner_text("body") + "".join(f.evaluate("() => document.body.innerText")
                                                  for f in page.frames[1:])
         seen |= {s for s in SENTINELS if s in text}
+        # and shown as it is: a bidi override or escape sequence appears as \u202e or \x1b, never obeyed
+        assert raw_controls(text.replace("\t", " ")) == [], path.name
+        visible |= {s for s in ("\\u202e", "\\x1b[2J") if s in text}
         page.close()
     assert len(pages(out)) == 4  # three students and summary.html
     # every hostile text was shown to its reader, as text: prints, state name, exception, both ids
     assert seen == set(SENTINELS)
+    assert visible == {"\\u202e", "\\x1b[2J"}
 
 
 def _post_render_replace():

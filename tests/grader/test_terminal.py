@@ -13,7 +13,8 @@ import mistakes
 import pytest
 
 from grader.cli import main as grade_main
-from grader.terminal import print_result, printable
+from grader.terminal import print_result
+from grader.untrusted import printable
 
 WRONG = Path(__file__).resolve().parents[1] / "data" / "terminal_wrong" / "printables.py"
 # OSC (window title), clear screen, cursor up, carriage return, backspace, bell, a one-byte CSI (C1),
