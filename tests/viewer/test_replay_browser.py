@@ -71,6 +71,17 @@ def wheel_zooms(page) -> bool:
     return True
 
 
+def legend_clear(page) -> bool:
+    """At home: true if every wall ends above the legend's top and the world still starts on the canvas."""
+    page.evaluate("() => window.simiam.home()")
+    walls = page.evaluate("""() => window.simiam.trace.world.obstacles.flat()
+        .map(p => window.simiam.worldToScreen(p[0], p[1]))""")
+    legend = page.locator("#legend").bounding_box()
+    canvas = page.locator("#world").bounding_box()
+    return bool(walls) and legend["height"] > 0 and max(y for _, y in walls) <= legend["y"] and \
+        min(y for _, y in walls) >= canvas["y"]
+
+
 @pytest.fixture(scope="module")
 def week4_page_path(tmp_path_factory, synthetic):
     return write_replay(synthetic.load("week4_wander.json"), tmp_path_factory.mktemp("replay") / "week4.html")
@@ -183,7 +194,7 @@ def test_collision_and_student_text(open_page, synthetic, tmp_path):
 
 @pytest.mark.parametrize(("mutation", "check"), [
     ("play_does_not_advance", plays_and_moves), ("follow_does_not_centre", follows),
-    ("wheel_ignored", wheel_zooms)])
+    ("wheel_ignored", wheel_zooms), ("legend_over_walls", legend_clear)])
 def test_checks_catch_wrong_pages(open_page, synthetic, tmp_path, monkeypatch, mutation, check):
     find, replace = MUTATIONS[mutation]
     real_asset = replay._asset
@@ -195,3 +206,11 @@ def test_checks_catch_wrong_pages(open_page, synthetic, tmp_path, monkeypatch, m
     path.write_text(render_replay(synthetic.load("week4_wander.json")))
     page, _ = open_page(path)
     assert not check(page)
+
+
+@pytest.mark.parametrize("viewport", [{"width": 1280, "height": 760}, {"width": 700, "height": 900}])
+def test_at_home_the_legend_is_clear_of_the_walls(open_page, synthetic, tmp_path, viewport):
+    page, errors = open_page(write_replay(synthetic.load("week3_goal.json"), tmp_path / "walls.html"))
+    page.set_viewport_size(viewport)
+    assert legend_clear(page)
+    assert errors == []

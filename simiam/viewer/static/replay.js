@@ -90,8 +90,11 @@
   }
   function home() {
     var w = BOUNDS[2] - BOUNDS[0], h = BOUNDS[3] - BOUNDS[1];
-    st.cx = (BOUNDS[0] + BOUNDS[2]) / 2; st.cy = (BOUNDS[1] + BOUNDS[3]) / 2;
-    st.zoom = Math.max(5, 0.92 * Math.min(st.W / Math.max(w, 0.6), st.H / Math.max(h, 0.6)));
+    // the world fits above the legend, which would otherwise cover the bottom wall
+    var legend = document.getElementById("legend"), below = legend ? legend.offsetHeight + 10 : 0;
+    var room = Math.max(st.H - below, st.H / 2);
+    st.zoom = Math.max(5, 0.92 * Math.min(st.W / Math.max(w, 0.6), room / Math.max(h, 0.6)));
+    st.cx = (BOUNDS[0] + BOUNDS[2]) / 2; st.cy = (BOUNDS[1] + BOUNDS[3]) / 2 - (st.H - room) / 2 / st.zoom;
     setFollowing(false);
     st.atHome = true;
   }
