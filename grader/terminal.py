@@ -76,6 +76,7 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
     checks = [c for c in result.get("checks") or [] if isinstance(c, dict)]
     id_width = max([len(one(c.get("id", ""))) for c in checks] + [10])
     indent = " " * 10
+    said = None  # the last message printed: one broken file fails many checks with the same words
     for c in checks:
         status = str(c.get("status", ""))
         mark = _MARK.get(status, one(status))
@@ -84,8 +85,11 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
                f"{_points(c.get('points'))}/{_points(c.get('max_points'), 'g')}{hidden}".rstrip())
         if status == "passed":
             continue
-        if c.get("message"):
+        if c.get("message") and c["message"] == said:
+            p.line(f"{indent}(the same reason as above)")
+        elif c.get("message"):
             p.wrapped(c["message"], indent)
+            said = c["message"]
         replay = (c.get("details") or {}).get("replay") if isinstance(c.get("details"), dict) else None
         if replay:
             # not wrapped: a command is copied and pasted whole (the terminal folds the long line)

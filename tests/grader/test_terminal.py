@@ -154,3 +154,13 @@ def test_grade_week_n_prints_student_text_only_as_visible_escapes(tmp_path: Path
     missing = tmp_path / "gone\x1b[2J"
     assert grade_main(["week3", str(missing)]) == 2
     assert raw_controls(capsys.readouterr().err) == []
+
+
+def test_a_reason_shared_by_many_checks_is_printed_once() -> None:
+    result = hostile_result()
+    why = "this check needs code that did not load: go_to_goal.py:47: syntax error"
+    for check in result["checks"][1:]:
+        check.update(status="error", message=why, details={})
+    out = io.StringIO()
+    print_result(result, out)
+    assert out.getvalue().count(why) == 1 and "(the same reason as above)" in out.getvalue()
