@@ -86,13 +86,17 @@ def _pending(fd: int) -> int:
         return 0
 
 
+_NOTE_ROOM = 60  # characters kept free for the note that replaces the middle
+
+
 def cut_middle(text: str, limit: int) -> str:
-    """`text` in at most about `limit` characters: its first and last lines, with the middle replaced by a
-    note of how much was cut. The first lines say what the code printed first (where a student looks for
-    their debug output), the last ones what it printed just before it stopped."""
+    """`text` in at most `limit` characters: its first and last lines, with the middle replaced by a note
+    of how much was cut. The first lines say what the code printed first (where a student looks for their
+    debug output), the last ones what it printed just before it stopped."""
     if len(text) <= limit:
         return text
-    head, tail = text[: limit // 2], text[len(text) - limit // 2:]
+    half = max(0, limit - _NOTE_ROOM) // 2
+    head, tail = text[:half], text[len(text) - half:]
     # whole lines where that loses little: a cut inside a line reads as a wrong value
     if "\n" in head[len(head) // 2:]:
         head = head[: head.rindex("\n") + 1]
