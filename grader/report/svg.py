@@ -246,10 +246,15 @@ def trajectory_svg(trace: dict, size: int = 360) -> Markup:
         x, y = sx(pose[0]), sy(pose[1])
         t = col.get("t")
         label = f"collision at t = {t:.2f} s" if _finite(t) else "collision"
+        # the label sits above the cross (below it near the top), on the side with room for it, with a
+        # white halo: readable over a wall or the path, never running off the map
+        room_right = x + 9 + 6.5 * len(label) <= size
+        lx, anchor = (x + 9, "start") if room_right else (x - 9, "end")
+        ly = y - 10 if y > 24 else y + 20
         out.append(f'<path d="M{_n(x - 6)} {_n(y - 6)} L{_n(x + 6)} {_n(y + 6)} M{_n(x + 6)} {_n(y - 6)} '
                    f'L{_n(x - 6)} {_n(y + 6)}" stroke="{RED}" stroke-width="2.5"/>'
-                   f'<text x="{_n(min(x + 9, size - 120))}" y="{_n(y + 4)}" fill="{RED}" font-weight="600">'
-                   f'{escape(label)}</text>')
+                   f'<text x="{_n(lx)}" y="{_n(ly)}" text-anchor="{anchor}" fill="{RED}" font-weight="600" '
+                   f'stroke="#fff" stroke-width="3" paint-order="stroke">{escape(label)}</text>')
     out.append(f'<g class="legend" transform="translate(6 {size + _LEGEND_STRIP - 7})">'
                f'<line x1="0" x2="16" y1="-4" y2="-4" stroke="{BLUE}" '
                f'stroke-width="2"/><text x="20" y="0">true path</text><line x1="86" x2="102" y1="-4" y2="-4" '

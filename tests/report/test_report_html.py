@@ -260,3 +260,20 @@ def test_the_trajectory_legend_is_under_the_map_clear_of_the_walls(synthetic):
     legend = next(g for g in picture.iter(ns + "g") if "true path" in "".join(g.itertext()))
     legend_top = float(re.search(r"translate\([\d.]+ ([\d.]+)\)", legend.get("transform"))[1]) - 11  # font 11
     assert legend_top >= size and float(picture.get("height")) >= legend_top + 11
+
+
+@pytest.mark.parametrize("where", ["right", "left", "top"])
+def test_the_collision_label_stays_on_the_map(synthetic, where):
+    trace = synthetic.load("week3_crash.json")
+    xs = [x for poly in trace["world"]["obstacles"] for x, _ in poly]
+    ys = [y for poly in trace["world"]["obstacles"] for _, y in poly]
+    pose = {"right": [max(xs) - 0.05, 0.0], "left": [min(xs) + 0.05, 0.0],
+            "top": [0.0, max(ys) - 0.02]}[where]
+    trace["collision"]["pose"] = pose + [0.0]
+    size = 360
+    picture = ElementTree.fromstring(str(svg.trajectory_svg(trace, size=size)))
+    texts = picture.iter("{http://www.w3.org/2000/svg}text")
+    label = next(t for t in texts if "collision at" in (t.text or ""))
+    x, y, width = float(label.get("x")), float(label.get("y")), 6.5 * len(label.text)  # font 11, bold
+    left = x - width if label.get("text-anchor") == "end" else x
+    assert 0 <= left and left + width <= size and 11 <= y <= size
