@@ -2,14 +2,15 @@
 
 Every student gets a page to open: for ``invalid``, ``timeout`` or ``crashed`` it says what happened and
 what to do; for a graded result without a grader report (the report package missing) it lists the checks.
-Everything shown comes from the student's result and id, so it goes through jinja2's autoescape only.
+Everything shown comes from the student's result and id, so it reaches the page only through the template
+(made visible by `page_text`, then autoescaped), under a policy that lets no script run.
 """
 
 from __future__ import annotations
 
 from jinja2 import Environment
 
-from grader.report.html import STATIC_PAGE_CSP, shown
+from grader.report.html import STATIC_PAGE_CSP, page_text
 
 _ADVICE = {
     "invalid": "The submission could not be graded as it is. Fix what the message says and submit again.",
@@ -36,7 +37,7 @@ td.msg{white-space:pre-wrap;overflow-wrap:anywhere}</style></head><body>
 </body></html>
 """
 
-_env = Environment(autoescape=True, finalize=shown)
+_env = Environment(autoescape=True, finalize=page_text)
 
 
 def fallback_page(student_id: str, result: dict) -> str:

@@ -4,7 +4,8 @@ Per-check pass rates and mean points, the score distribution as an inline SVG hi
 package's SVG helpers), and a table of students linking to each report and straight to each scenario
 run's replay in it (red when the check that ran it failed). Self-contained (no scripts, no
 external files), built from the per-student results only. Every student-controlled value (ids, messages)
-reaches the page through jinja2's autoescape; the plots are `Markup` built from numbers and escaped labels.
+reaches the page through the template (made visible by `page_text`, then autoescaped); the plots are
+`Markup` built from numbers and escaped labels.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from jinja2 import Environment
 
 from grader.batch.exports import check_ids, class_max_score
 from grader.batch.store import write_atomic
-from grader.report.html import STATIC_PAGE_CSP, run_anchor, shown
+from grader.report.html import STATIC_PAGE_CSP, page_text, run_anchor
 from grader.report.svg import histogram_svg, pass_rate_svg
 
 
@@ -110,7 +111,7 @@ title="{{ r.title }}"{% if r.failed %} class="failed"{% endif %}>{{ r.text }}</a
 </body></html>
 """
 
-_env = Environment(autoescape=True, finalize=shown)
+_env = Environment(autoescape=True, finalize=page_text)
 
 
 def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) -> str:

@@ -51,7 +51,7 @@ STATUS_WORDS = {"passed": "passed", "failed": "failed", "error": "error", "timeo
 STATIC_PAGE_CSP = "default-src 'none'; style-src 'unsafe-inline'; base-uri 'none'; form-action 'none'"
 
 
-def shown(value: Any) -> Any:
+def page_text(value: Any) -> Any:
     """The templates' `finalize`: every plain string a page shows goes through `printable` (a student's
     bidi override or escape sequence is shown, not obeyed), then autoescape. Markup (the plots, text the
     template escaped itself with `|e`) passes as it is."""
@@ -61,7 +61,7 @@ def shown(value: Any) -> Any:
 def _env() -> jinja2.Environment:
     env = jinja2.Environment(loader=jinja2.PackageLoader("grader.report", "templates"), autoescape=True,
                              undefined=jinja2.ChainableUndefined, trim_blocks=True, lstrip_blocks=True,
-                             finalize=shown)
+                             finalize=page_text)
     env.filters["num"] = _num
     return env
 
