@@ -16,19 +16,19 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import shutil
 import sys
-import textwrap
 from pathlib import Path
 
 from grader.grading import DEFAULT_SEED, CourseFilesMissing, grade_submission
 from grader.result import all_passed
-from grader.sandbox.capabilities import LOCAL_ONLY
+from grader.terminal import print_result
+from grader.untrusted import printable
 from simiam.course.folders import WeekFolderNotFound, week_folder
+
+__all__ = ["main", "print_result"]
 
 WEEKS = (1, 2, 3, 4)
 PLATFORM_COMMANDS = ("handout", "package", "selfcheck")   # grader.platforms.cli parses these
-_MARK = {"passed": "ok", "failed": "FAIL", "error": "ERROR", "timeout": "TIMEOUT"}
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -87,60 +87,16 @@ def _folder(args: argparse.Namespace, week: int, many: bool) -> Path:
     return week_folder(week, path, solutions=args.solutions)
 
 
-def print_result(result: dict, out=sys.stdout) -> None:
-    """The terminal table: one line per check, the total, and what a student should know next."""
-    width = max(100, shutil.get_terminal_size((120, 20)).columns)
-    isolation = result.get("isolation", "?")
-    print(
-        f"week {result['week']}: {result['submission']}  (seed {result['seed']}, "
-        f"grader {result['grader_version']}, isolation {isolation})",
-        file=out,
-    )
-    if result["status"] == "invalid":
-        print(f"  INVALID: {result.get('message', '')}", file=out)
-    id_width = max([len(c["id"]) for c in result["checks"]] + [10])
-    indent = " " * 10
-    for c in result["checks"]:
-        mark = _MARK.get(c["status"], c["status"])
-        hidden = "  [hidden]" if c.get("visibility") == "hidden" else ""
-        print(f"  {mark:7s} {c['id']:{id_width}s} {c['points']:5.2f}/{c['max_points']:<4g}{hidden}", file=out)
-        for line in textwrap.wrap(c["message"], width - len(indent)):
-            print(indent + line, file=out)
-        replay = (c.get("details") or {}).get("replay")
-        if replay and c["status"] != "passed":
-            print(f"{indent}replay: {replay}", file=out)
-    print(f"  total: {result['score']:g} / {result['max_score']:g}", file=out)
-    note = str(result.get("isolation_note") or "")
-    if note.startswith(LOCAL_ONLY):
-        for line in textwrap.wrap(note, width - 2):
-            print(f"  {line}", file=out)
-    for note in result.get("notices", []):
-        print(f"  note: {note}", file=out)
-    if not result.get("hidden"):
-        n = result.get("hidden_checks_not_run", 0)
-        ran = result.get("visible_checks", len(result["checks"]))
-        print(
-            f"  {_count(ran, 'visible check')} ran here"
-            + (f"; {_count(n, 'hidden check')} (other goals, other worlds, drawn per seed) run at official "
-               "grading" if n else ""),
-            file=out,
-        )
-
-
-def _count(n: int, noun: str) -> str:
-    return f"{n} {noun}{'' if n == 1 else 's'}"
-
-
 def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
     from grader.properties import parse_case
 
     try:
         folder = _folder(args, week, many)
     except WeekFolderNotFound as exc:
-        print(f"grade: {exc} (grade week{week} PATH)", file=sys.stderr)
+        print(f"grade: {printable(exc)} (grade week{week} PATH)", file=sys.stderr)
         return 2
     if not folder.is_dir():
-        print(f"grade: no such folder: {folder}", file=sys.stderr)
+        print(f"grade: no such folder: {printable(folder, multiline=False)}", file=sys.stderr)
         return 2
     case = parse_case(args.case) if args.case else None
     shown = "--solutions" if args.solutions else str(folder)
@@ -161,7 +117,7 @@ def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
     )
     print_result(result)
     if out_dir is not None:
-        print(f"  report: {out_dir / f'week{week}.html'} and week{week}.json")
+        print(f"  report: {printable(out_dir / f'week{week}.html', multiline=False)} and week{week}.json")
     if args.json_file:
         Path(args.json_file).write_text(json.dumps(result, indent=1), encoding="utf-8")
     return 0 if all_passed(result) else 1
@@ -194,7 +150,7 @@ def main(argv: list[str] | None = None) -> int:
             return batch_main(args)
         codes = [_grade_one(args, week, many=len(weeks) > 1) for week in weeks]
     except (ValueError, CourseFilesMissing) as exc:
-        print(f"grade: {exc}", file=sys.stderr)
+        print(f"grade: {printable(exc)}", file=sys.stderr)
         return 2
     except ImportError as exc:
         print(f"grade: this part of the grader is not installed ({exc})", file=sys.stderr)

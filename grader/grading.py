@@ -22,6 +22,7 @@ from grader.checks import Check, Context, checks_for_week, run_check
 from grader.result import CheckResult, submission_result
 from grader.sandbox.errors import SandboxError
 from grader.sandbox.limits import Limits
+from grader.sandbox.output import cut_middle
 from grader.sandbox.session import StudentSession
 
 DEFAULT_SEED = 2014
@@ -190,7 +191,7 @@ def grade_submission(
                 results.append(run_check(check, ctx, problems))
                 timing[check.id] = round(time.monotonic() - t0, 3)
             extra["problems"] = problems
-            extra["student_output"] = session.output()[-4000:]
+            extra["student_output"] = cut_middle(session.output(), 4000)
             extra["timing"] = {"total_seconds": round(time.monotonic() - began, 3), "checks": timing}
         finally:
             session.close()

@@ -20,9 +20,10 @@ CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run"
                  "--disable-quic"]
 
 
-def chromium_context(viewport: dict) -> Iterator:
+def chromium_context(viewport: dict, bypass_csp: bool = False) -> Iterator:
     """Yield a fresh persistent Chromium profile, headless, with every http(s) request refused; skips the
-    test when Chromium or playwright is absent. Use as the body of a generator fixture."""
+    test when Chromium or playwright is absent. Use as the body of a generator fixture. `bypass_csp`
+    ignores the pages' Content-Security-Policy (to show that escaping alone keeps student text inert)."""
     if not Path(CHROMIUM).exists():
         pytest.skip(f"{CHROMIUM} is absent (apt package 'chromium'); browser tests need it")
     sync_api = pytest.importorskip("playwright.sync_api",
@@ -30,7 +31,7 @@ def chromium_context(viewport: dict) -> Iterator:
     profile = tempfile.mkdtemp(prefix="simiam-chromium-")
     with sync_api.sync_playwright() as p:
         ctx = p.chromium.launch_persistent_context(profile, executable_path=CHROMIUM, args=CHROMIUM_ARGS,
-                                                   headless=True, viewport=viewport)
+                                                   headless=True, viewport=viewport, bypass_csp=bypass_csp)
         ctx.route("http*://**", lambda route: route.abort())  # the pages must not need the network
         yield ctx
         ctx.close()

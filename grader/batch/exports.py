@@ -91,8 +91,11 @@ def gradescope_result(result: dict) -> dict:
                       "status": "passed" if check.get("status") == "passed" else "failed",
                       "output": output, "visibility": visibility})
     score = _number(result.get("score"))
+    # every text Gradescope shows is plain text: student text (names, messages quoting their output) is
+    # never read as HTML, Markdown or ANSI colour by the page that shows it
     export = {"score": float(score) if score != "" else 0.0, "tests": tests,
-              "visibility": "visible", "stdout_visibility": "hidden"}
+              "visibility": "visible", "stdout_visibility": "hidden", "output_format": "text",
+              "test_output_format": "text", "test_name_format": "text"}
     if result.get("status") != "graded" or result.get("message"):
         export["output"] = f"{result.get('status', 'crashed')}: {result.get('message') or ''}".strip(": ")
     return export

@@ -11,7 +11,10 @@ import time
 from collections.abc import Callable
 from typing import TextIO
 
+from grader.untrusted import printable
+
 COUNTED = ("graded", "invalid", "timeout", "crashed", "skipped")
+MESSAGE_CHARS = 400  # a student's message in the log: the rest is in their report
 
 
 def format_duration(seconds: float) -> str:
@@ -86,9 +89,13 @@ class Progress:
         self._show(final=True)
 
     def message(self, text: str) -> None:
-        """A line of its own (a warning), without garbling the progress line on a terminal."""
+        """A line of its own (a warning), without garbling the progress line on a terminal. The text is
+        untrusted (student ids, messages): it is made printable and kept to one line of bounded length."""
         if self.quiet:
             return
+        text = printable(text, multiline=False)
+        if len(text) > MESSAGE_CHARS:
+            text = text[:MESSAGE_CHARS] + f" [... {len(text) - MESSAGE_CHARS} more characters]"
         if self.tty and self.width:
             self.stream.write("\r" + " " * self.width + "\r")
             self.width = 0

@@ -38,6 +38,7 @@ from grader.batch.progress import Progress
 from grader.batch.store import OutputBusy, exclusive, read_json, student_stem, write_atomic, write_json
 from grader.batch.submissions import Student, Submission, discover, pack, read_submission
 from grader.batch.summary import write_summary
+from grader.untrusted import printable
 
 # grade_submission bounds each student check with its own timeouts; this budget only catches a grading
 # process that hangs or thrashes as a whole.
@@ -111,10 +112,10 @@ def main(args: argparse.Namespace) -> int:
         options = BatchOptions.from_args(args)
         report = run_batch(options)
     except BatchError as exc:
-        print(f"grade: {exc}", file=sys.stderr)
+        print(f"grade: {printable(exc)}", file=sys.stderr)
         return 2
     except OSError as exc:          # disk full, read-only --out...: what was written so far stays valid
-        print(f"grade: the batch stopped: {exc}; fix this and rerun the same command to resume",
+        print(f"grade: the batch stopped: {printable(exc)}; fix this and rerun the same command to resume",
               file=sys.stderr)
         return 2
     if report["interrupted"]:

@@ -3,7 +3,9 @@
 Per-check pass rates and mean points, the score distribution as an inline SVG histogram (the report
 package's SVG helpers), and a table of students linking to each report and straight to each scenario
 run's replay in it (red when the check that ran it failed). Self-contained (no scripts, no
-external files), built from the per-student results only.
+external files), built from the per-student results only. Every student-controlled value (ids, messages)
+reaches the page through the template (made visible by `page_text`, then autoescaped); the plots are
+`Markup` built from numbers and escaped labels.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from jinja2 import Environment
 
 from grader.batch.exports import check_ids, class_max_score
 from grader.batch.store import write_atomic
-from grader.report.html import run_anchor
+from grader.report.html import STATIC_PAGE_CSP, page_text, run_anchor
 from grader.report.svg import histogram_svg, pass_rate_svg
 
 
@@ -67,7 +69,8 @@ def graded_scores(results: dict[str, dict]) -> list[float]:
 
 
 _TEMPLATE = """<!doctype html>
-<html lang="en"><head><meta charset="utf-8"><title>Week {{ week }} class summary</title>
+<html lang="en"><head><meta charset="utf-8">
+<meta http-equiv="Content-Security-Policy" content="{{ csp }}"><title>Week {{ week }} class summary</title>
 <style>
 body{font-family:system-ui,sans-serif;margin:2em;color:#222}table{border-collapse:collapse;margin:1em 0}
 td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}td.n{text-align:right;white-space:nowrap}
@@ -83,9 +86,9 @@ Seed {{ seed }}; grader {{ grader }}; hidden checks {{ "included" if hidden else
 {% if incomplete %}<p><strong>Incomplete:</strong> {{ incomplete }} submissions not graded yet;
 rerun the same command to finish.</p>{% endif %}
 <h2>Score distribution (graded submissions)</h2>
-{{ histogram|safe }}
+{{ histogram }}
 <h2>Checks</h2>
-{{ pass_rates|safe }}
+{{ pass_rates }}
 <table><tr><th>check</th><th>name</th><th>kind</th><th>max</th><th>pass rate</th><th>mean points</th>
 <th>errors</th></tr>
 {% for c in checks %}<tr><td><code>{{ c.id }}</code></td><td>{{ c.name }}</td><td>{{ c.kind }}</td>
@@ -108,7 +111,7 @@ title="{{ r.title }}"{% if r.failed %} class="failed"{% endif %}>{{ r.text }}</a
 </body></html>
 """
 
-_env = Environment(autoescape=True)
+_env = Environment(autoescape=True, finalize=page_text)
 
 
 def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) -> str:
@@ -125,7 +128,8 @@ def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) ->
                  "message": " ".join(str(r.get("message") or "").split())[:300]}
                 for sid, r in sorted(results.items())]
     return _env.from_string(_TEMPLATE).render(
-        week=meta.get("week"), seed=meta.get("seed"), hidden=meta.get("hidden"), grader=meta.get("grader"),
+        csp=STATIC_PAGE_CSP, week=meta.get("week"), seed=meta.get("seed"), hidden=meta.get("hidden"),
+        grader=meta.get("grader"),
         incomplete=meta.get("incomplete", 0), results=results,
         status_counts=dict(sorted(status_counts.items())),
         mean=sum(graded) / len(graded) if graded else None, max_score=max_score,

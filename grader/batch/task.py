@@ -36,23 +36,26 @@ def grade_task(task: dict) -> dict:
     week = int(task["week"])
     with tempfile.TemporaryDirectory(prefix="simiam-batch-") as tmp:
         submission = unpack(task["files"], Path(tmp) / "submission")
-        report_dir = Path(tmp) / "report"
         began = time.monotonic()
+        traces: dict[str, dict] = {}
         result = grade_submission(week=week, submission=submission, seed=int(task["seed"]),
-                                  hidden=bool(task["hidden"]), out_dir=report_dir,
-                                  sandbox=task.get("sandbox", "auto"),
+                                  hidden=bool(task["hidden"]), sandbox=task.get("sandbox", "auto"),
                                   # what the student types at home to replay a failing case: their own
                                   # ./assignments/weekN, not the batch's temporary folder
-                                  replay_prefix=f"grade week{week}")
+                                  replay_prefix=f"grade week{week}", traces=traces)
+        # The temporary path differs on every run and machine; the student's own name does not. It is
+        # replaced in the result's plain text, before the report renders (and escapes) it: never in HTML.
+        result = replace_text(result, str(submission), task.get("display") or task["student"])
         timing = result.get("timing") if isinstance(result.get("timing"), dict) else {}
+        try:
+            from grader.report.html import render_report
+        except ImportError:  # a grader installed without its report package: the batch writes a plain page
+            html = None
+        else:
+            html = render_report(result, traces)
         # the whole call, report writing included: what the batch adds is measured against this
         result["timing"] = {**timing, "grade_submission_seconds": round(time.monotonic() - began, 3)}
-        html_path = report_dir / f"week{week}.html"
-        html = html_path.read_text(encoding="utf-8") if html_path.is_file() else None
-        # The temporary path differs on every run and machine; the student's own name does not.
-        display = task.get("display") or task["student"]
-        return {"result": replace_text(result, str(submission), display),
-                "html": html.replace(str(submission), display) if html is not None else None}
+        return {"result": result, "html": html}
 
 
 def replace_text(value: object, old: str, new: str) -> object:

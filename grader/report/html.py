@@ -5,8 +5,10 @@ the contract's result JSON; `traces` maps trace keys to Seam-2 traces (dicts). A
 `traces[check_id]`, `traces[check_id + "#2"]`, ... (what `grader.scenarios.keep` stores), or under the names
 listed in `details["traces"]`. Run k of a check lines up with `details["runs"][k]` for its metrics.
 
-Everything a student controls (messages, details, printed output, the submission name) is escaped by
-jinja2's autoescape; the plots are inline SVG built from numbers (grader.report.svg), readable offline.
+Everything a student controls (messages, details, printed output, the submission name) reaches the page
+only through the template: made visible by `printable` (the `finalize` hook) and escaped by jinja2's
+autoescape, never pasted into rendered HTML; the page's Content-Security-Policy lets no script run but the
+embedded replays' own. The plots are inline SVG built from numbers (grader.report.svg), readable offline.
 Each scenario run gets an embedded replay (simiam.viewer.replay in an iframe `srcdoc`), thinned so that
 the report stays small; `replays="files"` writes the replay pages next to the report and links them.
 """
@@ -20,8 +22,10 @@ from pathlib import Path
 from typing import Any
 
 import jinja2
+from markupsafe import Markup
 
 from grader.report import svg
+from grader.untrusted import printable
 
 # Metrics the scenario checks report, in the order shown, with how to print them.
 METRICS: dict[str, tuple[str, str]] = {
@@ -42,11 +46,22 @@ RUN_LABELS = ("label", "goal", "theta_d", "world")
 # runs stays well under 1 MB (each thinned to every 3rd step); short runs keep every step.
 REPLAY_ROWS, REPORT_ROWS = 1000, 3000
 STATUS_WORDS = {"passed": "passed", "failed": "failed", "error": "error", "timeout": "timed out"}
+# Pages with no script of their own (the class summary, the fallback page) get this policy: even if some
+# text escaped the templates' autoescape, a browser would run no script and load nothing from it.
+STATIC_PAGE_CSP = "default-src 'none'; style-src 'unsafe-inline'; base-uri 'none'; form-action 'none'"
+
+
+def page_text(value: Any) -> Any:
+    """The templates' `finalize`: every plain string a page shows goes through `printable` (a student's
+    bidi override or escape sequence is shown, not obeyed), then autoescape. Markup (the plots, text the
+    template escaped itself with `|e`) passes as it is."""
+    return printable(value) if isinstance(value, str) and not isinstance(value, Markup) else value
 
 
 def _env() -> jinja2.Environment:
     env = jinja2.Environment(loader=jinja2.PackageLoader("grader.report", "templates"), autoescape=True,
-                             undefined=jinja2.ChainableUndefined, trim_blocks=True, lstrip_blocks=True)
+                             undefined=jinja2.ChainableUndefined, trim_blocks=True, lstrip_blocks=True,
+                             finalize=page_text)
     env.filters["num"] = _num
     return env
 
@@ -168,10 +183,10 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
         steps = trace.get("steps") or {}
         anchor = run_anchor(key) + ("-in-" + _slug(str(check.get("id", ""))) if shared else "")
         view: dict[str, Any] = {"key": key, "label": label, "anchor": anchor, "problem": "",
-                                "shared": None,
+                                "shared": None, "never_started": False,
                                 "trajectory": None, "heading": None, "srcdoc": None, "href": hrefs.get(key)}
-        if not steps.get("t"):
-            view["problem"] = "the run stopped before its first step, so there is nothing to plot"
+        if len(steps.get("t") or []) < 2:  # row 0 is the start pose, before the first step
+            view["never_started"] = True  # one line instead of an empty plot (the reason is in the message)
             views.append(view)
             continue
         view["trajectory"] = svg.trajectory_svg(trace)
@@ -264,9 +279,18 @@ def render_report(result: dict, traces: dict[str, dict] | None = None, *, replay
     embedded = sum(1 for k in traces if k not in (replay_hrefs or {})) if replays == "inline" else 0
     max_rows = max(300, min(REPLAY_ROWS, REPORT_ROWS // max(1, embedded)))
     shown: set[str] = set()
-    checks = [_check_view(c, traces, replays, replay_hrefs or {}, shown, max_rows)
-              for c in result.get("checks") or [] if isinstance(c, dict)]
-    return _env().get_template("report.html.j2").render(summary=_summary(result, checks), checks=checks)
+    # failures first (the check that failed on a run also embeds its replay); passed ones after, collapsed
+    checks = sorted((c for c in result.get("checks") or [] if isinstance(c, dict)),
+                    key=lambda c: c.get("status") == "passed")
+    views = [_check_view(c, traces, replays, replay_hrefs or {}, shown, max_rows) for c in checks]
+    if any(run["srcdoc"] for view in views for run in view["runs"]):
+        from simiam.viewer.replay import content_security_policy
+
+        csp = content_security_policy()  # the embedded replays inherit it: it must let their script run
+    else:
+        csp = STATIC_PAGE_CSP
+    return _env().get_template("report.html.j2").render(summary=_summary(result, views), checks=views,
+                                                        csp=csp)
 
 
 def write_report(result: dict, traces: dict[str, dict] | None, path: str | Path, *,

@@ -16,6 +16,7 @@ from markupsafe import Markup
 
 BLUE, RED, GREEN, GREY, ORANGE = "#1f4fd1", "#d1242f", "#1a7f37", "#8a8f98", "#b35900"
 _FONT = 'font-family="system-ui, sans-serif" font-size="11"'
+_LEGEND_STRIP = 20  # px under a top view for its legend
 
 
 def _n(v: float) -> str:
@@ -211,8 +212,11 @@ def trajectory_svg(trace: dict, size: int = 360) -> Markup:
     def sy(y: float) -> float:
         return size / 2 - (y - cy) * scale
 
-    out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {size} {size}" width="{size}" '
-           f'height="{size}" role="img" class="plot trajectory" {_FONT}><title>trajectory</title>'
+    # the legend has a strip of its own under the map: drawn on the map it would cover the walls
+    height = size + _LEGEND_STRIP
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {size} {height}" width="{size}" '
+           f'height="{height}" role="img" class="plot trajectory" {_FONT}><title>trajectory</title>'
+           f'<rect width="{size}" height="{height}" fill="#fff"/>'
            f'<rect width="{size}" height="{size}" fill="#fff" stroke="#c5cbd3"/>']
     for poly in obstacles:
         d = " ".join(f"{_n(sx(x))},{_n(sy(y))}" for x, y in poly if _finite(x) and _finite(y))
@@ -242,11 +246,17 @@ def trajectory_svg(trace: dict, size: int = 360) -> Markup:
         x, y = sx(pose[0]), sy(pose[1])
         t = col.get("t")
         label = f"collision at t = {t:.2f} s" if _finite(t) else "collision"
+        # the label sits above the cross (below it near the top), on the side with room for it, with a
+        # white halo: readable over a wall or the path, never running off the map
+        room_right = x + 9 + 6.5 * len(label) <= size
+        lx, anchor = (x + 9, "start") if room_right else (x - 9, "end")
+        ly = y - 10 if y > 24 else y + 20
         out.append(f'<path d="M{_n(x - 6)} {_n(y - 6)} L{_n(x + 6)} {_n(y + 6)} M{_n(x + 6)} {_n(y - 6)} '
                    f'L{_n(x - 6)} {_n(y + 6)}" stroke="{RED}" stroke-width="2.5"/>'
-                   f'<text x="{_n(min(x + 9, size - 120))}" y="{_n(y + 4)}" fill="{RED}" font-weight="600">'
-                   f'{escape(label)}</text>')
-    out.append(f'<g transform="translate(6 {size - 8})"><line x1="0" x2="16" y1="-4" y2="-4" stroke="{BLUE}" '
+                   f'<text x="{_n(lx)}" y="{_n(ly)}" text-anchor="{anchor}" fill="{RED}" font-weight="600" '
+                   f'stroke="#fff" stroke-width="3" paint-order="stroke">{escape(label)}</text>')
+    out.append(f'<g class="legend" transform="translate(6 {size + _LEGEND_STRIP - 7})">'
+               f'<line x1="0" x2="16" y1="-4" y2="-4" stroke="{BLUE}" '
                f'stroke-width="2"/><text x="20" y="0">true path</text><line x1="86" x2="102" y1="-4" y2="-4" '
                f'stroke="{GREY}" stroke-dasharray="4 3" stroke-width="1.5"/><text x="106" y="0">odometry'
                f'</text></g></svg>')

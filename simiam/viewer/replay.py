@@ -8,6 +8,8 @@ time cursor. Its script and style are inlined from `static/`, so the file opens 
 
 from __future__ import annotations
 
+import base64
+import hashlib
 import json
 import math
 from importlib import resources
@@ -15,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 import jinja2
+from markupsafe import Markup
 
 TRACE_FORMAT = "simiam-trace/1"
 
@@ -157,14 +160,39 @@ def pack_trace(trace: dict) -> dict:
     }
 
 
-def _script_json(data: dict) -> str:
-    """JSON that is safe inside <script type="application/json">: no '<', '>' or '&' can end the element."""
-    text = json.dumps(data, separators=(",", ":"), allow_nan=False, ensure_ascii=False)
-    return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
-
-
 def _asset(name: str) -> str:
     return resources.files("simiam.viewer").joinpath(name).read_text(encoding="utf-8")
+
+
+def _script() -> str:
+    """The page's one script element's text, exactly (its hash is what the page's CSP allows to run)."""
+    return "\n" + _asset("static/replay.js") + "\n"
+
+
+def content_security_policy() -> str:
+    """The replay page's Content-Security-Policy: its own inlined script may run and nothing else (no
+    injected inline script or event handler, no fetch, no form, no plug-in). A page that embeds a replay
+    in an iframe `srcdoc` must allow the same script hash: a srcdoc frame inherits its parent's policy."""
+    digest = base64.b64encode(hashlib.sha256(_script().encode("utf-8")).digest()).decode("ascii")
+    return (f"default-src 'none'; script-src 'sha256-{digest}'; style-src 'unsafe-inline'; "
+            "img-src data:; base-uri 'none'; form-action 'none'")
+
+
+def _encodable(value: Any) -> Any:
+    if isinstance(value, str) and not isinstance(value, Markup):
+        return value.encode("utf-8", "backslashreplace").decode("utf-8")
+    return value
+
+
+def _env() -> jinja2.Environment:
+    # a title from a file name that is not UTF-8 (lone surrogates) is shown escaped, not a crash
+    env = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined, finalize=_encodable)
+    # the trace goes into a <script type="application/json"> through jinja2's tojson, which escapes < > & '
+    # so that no text inside (a student's state name: "</script>", "<!--") can end or change the element;
+    # ASCII-only, so that any text (lone surrogates too) is written as \u escapes JSON.parse reads back
+    env.policies["json.dumps_kwargs"] = {"separators": (",", ":"), "allow_nan": False,
+                                         "ensure_ascii": True, "sort_keys": False}
+    return env
 
 
 def render_replay(trace: dict, title: str | None = None, max_rows: int | None = None) -> str:
@@ -190,11 +218,10 @@ def render_replay(trace: dict, title: str | None = None, max_rows: int | None = 
         bits.append(f"1 step in {stride} shown")
     if meta.get("seed") is not None:
         bits.append(f"seed {meta['seed']}")
-    env = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined)
-    template = env.from_string(_asset("templates/replay.html"))
+    template = _env().from_string(_asset("templates/replay.html"))
     return template.render(title=title, subtitle=" · ".join(b for b in bits if b),
-                           css=_asset("static/replay.css"), js=_asset("static/replay.js"),
-                           data_json=_script_json(packed))
+                           csp=content_security_policy(), css=Markup(_asset("static/replay.css")),
+                           script=Markup(_script()), data=packed)
 
 
 def write_replay(trace: dict, path: str | Path) -> Path:

@@ -40,7 +40,7 @@ def test_summary_and_checks_table(week3_result):
                  "hidden variants", "1 passed, 2 failed, 1 error"):
         assert text in html, text
     rows = re.findall(r"<tr class=\"(passed|failed|error|timeout)\">", html)
-    assert rows == ["passed", "failed", "failed", "error"]
+    assert rows == ["failed", "failed", "error", "passed"]  # failures first, in the declared order
     assert 'href="#check-week3.pid.integral"' in html and 'id="check-week3.pid.integral"' in html
 
 
@@ -112,7 +112,7 @@ def test_invalid_submission_and_broken_traces(week3_result):
     assert "go_to_goal.py line 3: invalid syntax" in html and "badge invalid" in html
     empty = {"format": "simiam-trace/1", "week": 3, "robot": {}, "steps": {"t": []}, "world": {}}
     html = render_report(result, {"week3.go_to_goal.reaches_goals": empty})
-    assert "stopped before its first step" in html
+    assert "ended before the robot's first step" in html
 
 
 def test_metric_formatting():
@@ -221,3 +221,59 @@ def test_a_go_to_angle_run_plots_theta_against_theta_d(synthetic):
     lines = re.findall(r'<path d="M([^"]+)"', plot)
     assert len(lines) == 3                             # θ (true), θ_d, θ (estimate)
     assert len({pt.split()[-1] for pt in lines[1].split(" L")}) == 1 and len(lines[0].split(" L")) > 10
+
+
+def test_failures_come_first_and_passed_checks_are_collapsed(week3_result):
+    result, traces = week3_result
+    result["checks"][2]["status"] = "passed"  # a passed check with runs and plots: collapsed all the same
+    html = render_report(result, traces, replays="none")
+    articles = re.findall(r'<article class="check (\w+)" id="check-([^"]+)">\s*'
+                          r'<details class="check-body"( open)?>', html)
+    assert [(status, cid) for status, cid, _ in articles] == [
+        ("failed", "week3.pid.integral"), ("error", "week3.ensure_w.keeps_w"),
+        ("passed", "week3.theta_g.quadrants"), ("passed", "week3.go_to_goal.reaches_goals")]
+    assert [bool(is_open) for _, _, is_open in articles] == [True, True, False, False]
+    rows = re.findall(r"<tr class=\"(passed|failed|error|timeout)\">", html)
+    assert rows == ["failed", "error", "passed", "passed"]
+
+
+def test_a_run_that_never_started_gets_one_line_not_an_empty_plot(week3_result):
+    result, traces = week3_result
+    crash = traces["week3.go_to_goal.reaches_goals#2"]
+    # what a run keeps when the student's code raised at the first step: row 0, the start pose, only
+    crash["steps"] = {name: column[:1] for name, column in crash["steps"].items()}
+    crash["collision"] = None
+    html = render_report(result, traces)
+    section = html.split('id="check-week3.go_to_goal.reaches_goals"', 1)[1].split("</article>", 1)[0]
+    assert len(svg_elements(section)) == 2 and section.count("<iframe") == 1  # the first run only
+    assert "Run goal (2, -0.3): ended before the robot's first step" in section
+
+
+def test_the_trajectory_legend_is_under_the_map_clear_of_the_walls(synthetic):
+    trace = synthetic.load("week3_goal.json")
+    size = 360
+    picture = ElementTree.fromstring(str(svg.trajectory_svg(trace, size=size)))
+    ns = "{http://www.w3.org/2000/svg}"
+    walls = [float(v) for poly in picture.iter(ns + "polygon")
+             for point in poly.get("points").split() for v in point.split(",")[1:]]
+    assert walls and max(walls) <= size  # every obstacle is drawn on the map
+    legend = next(g for g in picture.iter(ns + "g") if "true path" in "".join(g.itertext()))
+    legend_top = float(re.search(r"translate\([\d.]+ ([\d.]+)\)", legend.get("transform"))[1]) - 11  # font 11
+    assert legend_top >= size and float(picture.get("height")) >= legend_top + 11
+
+
+@pytest.mark.parametrize("where", ["right", "left", "top"])
+def test_the_collision_label_stays_on_the_map(synthetic, where):
+    trace = synthetic.load("week3_crash.json")
+    xs = [x for poly in trace["world"]["obstacles"] for x, _ in poly]
+    ys = [y for poly in trace["world"]["obstacles"] for _, y in poly]
+    pose = {"right": [max(xs) - 0.05, 0.0], "left": [min(xs) + 0.05, 0.0],
+            "top": [0.0, max(ys) - 0.02]}[where]
+    trace["collision"]["pose"] = pose + [0.0]
+    size = 360
+    picture = ElementTree.fromstring(str(svg.trajectory_svg(trace, size=size)))
+    texts = picture.iter("{http://www.w3.org/2000/svg}text")
+    label = next(t for t in texts if "collision at" in (t.text or ""))
+    x, y, width = float(label.get("x")), float(label.get("y")), 6.5 * len(label.text)  # font 11, bold
+    left = x - width if label.get("text-anchor") == "end" else x
+    assert 0 <= left and left + width <= size and 11 <= y <= size

@@ -1,4 +1,6 @@
 """The replay page in headless Chromium: it plays, zooms, pans, follows and seeks like the original GUI."""
+# Predicates are arrow functions, not bare expressions: playwright evaluates a bare expression string with
+# eval(), which the page's Content-Security-Policy (no unsafe-eval) refuses.
 
 from __future__ import annotations
 
@@ -30,7 +32,7 @@ def plays_and_moves(page) -> bool:
     before = state(page)
     page.click("#btn-play")
     try:
-        page.wait_for_function("window.simiam.state().t > 1.0", timeout=3_000)
+        page.wait_for_function("() => window.simiam.state().t > 1.0", timeout=3_000)
     except Exception:
         return False
     after = state(page)
@@ -47,7 +49,7 @@ def follows(page) -> bool:
         return False
     page.evaluate("window.simiam.play()")
     try:
-        page.wait_for_function("window.simiam.state().t > 3.0", timeout=3_000)
+        page.wait_for_function("() => window.simiam.state().t > 3.0", timeout=3_000)
     except Exception:
         return False
     s = state(page)
@@ -63,10 +65,21 @@ def wheel_zooms(page) -> bool:
     page.mouse.move(x + 40, y + 30)
     page.mouse.wheel(0, -400)
     try:
-        page.wait_for_function(f"window.simiam.state().zoom > {z0} * 1.2", timeout=2_000)
+        page.wait_for_function(f"() => window.simiam.state().zoom > {z0} * 1.2", timeout=2_000)
     except Exception:
         return False
     return True
+
+
+def legend_clear(page) -> bool:
+    """At home: true if every wall ends above the legend's top and the world still starts on the canvas."""
+    page.evaluate("() => window.simiam.home()")
+    walls = page.evaluate("""() => window.simiam.trace.world.obstacles.flat()
+        .map(p => window.simiam.worldToScreen(p[0], p[1]))""")
+    legend = page.locator("#legend").bounding_box()
+    canvas = page.locator("#world").bounding_box()
+    return bool(walls) and legend["height"] > 0 and max(y for _, y in walls) <= legend["y"] and \
+        min(y for _, y in walls) >= canvas["y"]
 
 
 @pytest.fixture(scope="module")
@@ -181,7 +194,7 @@ def test_collision_and_student_text(open_page, synthetic, tmp_path):
 
 @pytest.mark.parametrize(("mutation", "check"), [
     ("play_does_not_advance", plays_and_moves), ("follow_does_not_centre", follows),
-    ("wheel_ignored", wheel_zooms)])
+    ("wheel_ignored", wheel_zooms), ("legend_over_walls", legend_clear)])
 def test_checks_catch_wrong_pages(open_page, synthetic, tmp_path, monkeypatch, mutation, check):
     find, replace = MUTATIONS[mutation]
     real_asset = replay._asset
@@ -193,3 +206,11 @@ def test_checks_catch_wrong_pages(open_page, synthetic, tmp_path, monkeypatch, m
     path.write_text(render_replay(synthetic.load("week4_wander.json")))
     page, _ = open_page(path)
     assert not check(page)
+
+
+@pytest.mark.parametrize("viewport", [{"width": 1280, "height": 760}, {"width": 700, "height": 900}])
+def test_at_home_the_legend_is_clear_of_the_walls(open_page, synthetic, tmp_path, viewport):
+    page, errors = open_page(write_replay(synthetic.load("week3_goal.json"), tmp_path / "walls.html"))
+    page.set_viewport_size(viewport)
+    assert legend_clear(page)
+    assert errors == []

@@ -90,8 +90,11 @@
   }
   function home() {
     var w = BOUNDS[2] - BOUNDS[0], h = BOUNDS[3] - BOUNDS[1];
-    st.cx = (BOUNDS[0] + BOUNDS[2]) / 2; st.cy = (BOUNDS[1] + BOUNDS[3]) / 2;
-    st.zoom = Math.max(5, 0.92 * Math.min(st.W / Math.max(w, 0.6), st.H / Math.max(h, 0.6)));
+    // the world fits above the legend, which would otherwise cover the bottom wall
+    var legend = document.getElementById("legend"), below = legend ? legend.offsetHeight + 10 : 0;
+    var room = Math.max(st.H - below, st.H / 2);
+    st.zoom = Math.max(5, 0.92 * Math.min(st.W / Math.max(w, 0.6), room / Math.max(h, 0.6)));
+    st.cx = (BOUNDS[0] + BOUNDS[2]) / 2; st.cy = (BOUNDS[1] + BOUNDS[3]) / 2 - (st.H - room) / 2 / st.zoom;
     setFollowing(false);
     st.atHome = true;
   }
@@ -371,13 +374,20 @@
     if (String(slider.value) !== String(i)) { slider.value = i; }
     if (i === st.lastStatusIndex) { return; }
     st.lastStatusIndex = i;
-    var parts = ["<b>step</b> " + i, "<b>state</b> " + escapeHtml(stateAt(i)),
+    var parts = ["<b>step</b> " + i, "<b>state</b> " + escapeHtml(visible(stateAt(i))),
                  "<b>true</b> (" + f3(S.x[i]) + ", " + f3(S.y[i]) + ", " + f3(wrap(S.theta[i])) + ")",
                  "<b>estimate</b> (" + f3(S.x_est[i]) + ", " + f3(S.y_est[i]) + ", " + f3(wrap(S.theta_est[i])) + ")",
                  "<b>wheels</b> " + f3(S.vel_r[i]) + " / " + f3(S.vel_l[i]) + " rad/s"];
     if (S.ir0) { parts.push("<b>IR</b> " + [0, 1, 2, 3, 4].map(function (k) { return f3(S["ir" + k][i]); }).join(" ")); }
     if (D.collision && S.t[i] >= D.collision.t - 1e-9) { parts.push("<span class=\"crash\">collided at t = " + D.collision.t.toFixed(2) + " s</span>"); }
     statusEl.innerHTML = parts.join(" &nbsp; ");
+  }
+  // A state name comes from student code: control and bidi characters are shown (\x1b, \u202e), not obeyed.
+  function visible(s) {
+    return String(s).replace(/[\u0000-\u001f\u007f-\u009f\u00ad\u061c\u200b-\u200f\u2028-\u202e\u2060-\u206f\ufeff\ufff9-\ufffb]/g, function (c) {
+      var h = c.charCodeAt(0).toString(16);
+      return c.charCodeAt(0) < 0x100 ? "\\x" + ("0" + h).slice(-2) : "\\u" + ("000" + h).slice(-4);
+    });
   }
   function escapeHtml(s) {
     return String(s).replace(/[&<>"']/g, function (c) { return { "&": "&amp;", "<": "&lt;", ">": "&gt;", "\"": "&quot;", "'": "&#39;" }[c]; });
