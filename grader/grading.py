@@ -18,7 +18,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from grader.checks import Check, Context, checks_for_week, run_check
+from grader.checks import Check, Context, checks_for_week, grader_error, run_check
 from grader.result import CheckResult, submission_result
 from grader.sandbox.errors import SandboxError
 from grader.sandbox.limits import Limits
@@ -152,6 +152,32 @@ def grade_submission(
     if not submission.is_dir():
         result = _invalid(week, seed, submission, selected, f"no such folder: {submission}", extra)
         return _finish(result, traces, out_dir)
+    try:
+        result = _grade(week, submission, seed, hidden, sandbox, selected, extra, traces, case, limits,
+                        replay_prefix, began)
+    except CourseFilesMissing:
+        raise
+    except Exception as exc:  # noqa: BLE001 - a grader bug: the student is told so, never a traceback
+        message, details = grader_error(exc)
+        extra["grader_error"] = details["grader_error"]
+        result = _invalid(week, seed, submission, selected, message, extra)
+    return _finish(result, traces, out_dir)
+
+
+def _grade(
+    week: int,
+    submission: Path,
+    seed: int,
+    hidden: bool,
+    sandbox: str,
+    selected: list[Check],
+    extra: dict[str, Any],
+    traces: dict[str, dict],
+    case: dict[str, Any] | None,
+    limits: Limits | None,
+    replay_prefix: str | None,
+    began: float,
+) -> dict:
     with tempfile.TemporaryDirectory(prefix="simiam-grade-") as tmp:
         spliced, problems, notices = _splice(week, submission, Path(tmp))
         extra["notices"] = notices
@@ -162,7 +188,7 @@ def grade_submission(
             except SandboxError as exc:
                 extra["isolation"] = session.isolation
                 message = f"your code could not be loaded at all: {exc.message}"
-                return _finish(_invalid(week, seed, submission, selected, message, extra), traces, out_dir)
+                return _invalid(week, seed, submission, selected, message, extra)
             for file, texts in _load_problems(week, loaded).items():
                 problems.setdefault(file, []).extend(texts)
             extra["isolation"] = session.isolation
@@ -171,7 +197,7 @@ def grade_submission(
                 message = "none of your files could be loaded: " + "; ".join(
                     t for v in problems.values() for t in v
                 )
-                return _finish(_invalid(week, seed, submission, selected, message, extra), traces, out_dir)
+                return _invalid(week, seed, submission, selected, message, extra)
             prefix = replay_prefix if replay_prefix is not None else f"grade week{week} {submission}"
             ctx = Context(
                 week=week,
@@ -193,7 +219,7 @@ def grade_submission(
             extra["timing"] = {"total_seconds": round(time.monotonic() - began, 3), "checks": timing}
         finally:
             session.close()
-    result = submission_result(
+    return submission_result(
         week=week,
         seed=seed,
         submission=str(submission),
@@ -201,7 +227,6 @@ def grade_submission(
         results=results,
         extra=extra,
     )
-    return _finish(result, traces, out_dir)
 
 
 def _invalid(

@@ -97,6 +97,26 @@ def sandbox_message(exc: SandboxError) -> tuple[str, str]:
     return "error", str(exc)
 
 
+GRADER_ERROR = "grader error, not your fault"
+
+
+def grader_error(exc: BaseException) -> tuple[str, dict[str, Any]]:
+    """(message, details) for a bug in the grader itself: the student is told it is not their fault and
+    to report it; the details keep where in the grader it happened, for whoever fixes it."""
+    import traceback
+    from pathlib import Path
+
+    package = Path(__file__).resolve().parents[1]
+    frames = [f for f in traceback.extract_tb(exc.__traceback__) if Path(f.filename).is_relative_to(package)]
+    where = f"{Path(frames[-1].filename).relative_to(package)}:{frames[-1].lineno}" if frames else "?"
+    message = (
+        f"{GRADER_ERROR}: this check could not be finished because of a bug in the grader "
+        f"({type(exc).__name__} in grader/{where}). Please report it to the course staff with this "
+        "message; your other checks are not affected."
+    )
+    return message, {"grader_error": {"type": type(exc).__name__, "message": str(exc)[:300], "where": where}}
+
+
 def run_check(check: Check, ctx: Context, load_errors: dict[str, list[str]]) -> CheckResult:
     """Run one check and turn whatever happens into a CheckResult (never raises for student problems)."""
     result = CheckResult(
@@ -117,9 +137,7 @@ def run_check(check: Check, ctx: Context, load_errors: dict[str, list[str]]) -> 
         return result
     except Exception as exc:  # noqa: BLE001 - a grader bug must not stop the other checks (fail closed)
         result.status = "error"
-        result.message = (
-            f"the grader could not finish this check (internal error {type(exc).__name__}: {exc})"
-        )
+        result.message, result.details = grader_error(exc)
         return result
     fraction = min(max(float(outcome.fraction), 0.0), 1.0)
     result.points = fraction * check.weight

@@ -247,6 +247,7 @@ def _avoid(
             False,
             f"drove only {length:.2f} m in {seconds:g} s (at least {MIN_PATH:g} m expected)",
             details,
+            r,
         )
     gap = r.metrics.get("min_clearance")
     closest = f", never closer than {gap:.2f} m to an obstacle" if gap is not None else ""
