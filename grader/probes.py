@@ -187,6 +187,9 @@ def avoid_obstacles(sub, week: int, distances: list, pose: list, v: float = 0.2,
         "out": plain(result),
         "u_ao": plain(getattr(ctrl, "u_ao", None)),
         "ir_distances_wf": plain(getattr(ctrl, "ir_distances_wf", None)),
+        # the provided code keeps theta_ao in theta_g and the error e_k in e_k_1
+        "theta_ao": plain(getattr(ctrl, "theta_g", None)),
+        "e_k": plain(getattr(ctrl, "e_k_1", None)),
     }
 
 
