@@ -87,14 +87,26 @@ def _splice(week: int, submission: Path, tmp: Path) -> tuple[Path, dict[str, lis
     problems: dict[str, list[str]] = {}
     notices: list[str] = []
     for name, res in report.files.items():
-        if res.missing:
+        if res.missing and name in files_to_write(week):
             problems.setdefault(name, []).append(f"{name} is missing from your submission")
+        elif res.missing:
+            notices.append(
+                f"{name} is missing from your submission: you write nothing in it this week, so the version "
+                "the course ships was used"
+            )
         problems.setdefault(name, []).extend(f"{e} (the stub's code was used instead)" for e in res.errors)
         notices.extend(f"{edit} (edits outside the code blocks are not run)" for edit in res.outside_edits)
         if not problems[name]:
             del problems[name]
     notices.extend(f"{name}: not part of the assignment (ignored)" for name in report.extra_files)
     return spliced, problems, notices
+
+
+def files_to_write(week: int) -> set[str]:
+    """The files with a code block that is new in `week` (the others ship complete and may be missing)."""
+    from simiam.course.placeholders import PLACEHOLDERS
+
+    return {p.file for p in PLACEHOLDERS if p.week == week}
 
 
 def _load_problems(week: int, loaded: dict) -> dict[str, list[str]]:
