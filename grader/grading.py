@@ -219,6 +219,7 @@ def _grade(
                 case=case,
                 traces=traces,
                 replay_prefix=prefix + (" --hidden" if hidden else "") + f" --seed {seed}",
+                submission=str(submission),
             )
             results: list[CheckResult] = []
             timing = {}

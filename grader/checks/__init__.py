@@ -45,6 +45,8 @@ class Context:
     replay_prefix: str = ""  # e.g. "grade week2 path/to/folder"
     call_seconds: float = 2.0
     memo: dict[str, Any] = field(default_factory=dict)  # runs shared between checks of one grading
+    submission: str = ""  # the folder as the student named it (for the replay snippet)
+    last_probe: tuple[str, dict[str, Any]] | None = None  # the last probe sent: what a replay repeats
 
     @property
     def config(self):
@@ -58,6 +60,7 @@ class Context:
 
     def probe(self, name: str, **args: Any) -> Any:
         """Run probe `name` in the student's worker; the untrusted JSON answer."""
+        self.last_probe = (name, {"week": self.week, **args})
         return self.session.call(
             "probe", name=name, args={"week": self.week, **args}, timeout=self.call_seconds
         )
@@ -131,6 +134,8 @@ def run_check(check: Check, ctx: Context, load_errors: dict[str, list[str]]) -> 
         outcome = check.run(ctx)
     except SandboxError as exc:
         result.status, result.message = sandbox_message(exc)
+        if result.status == "timeout":  # the command that runs this check alone, to see where it hangs
+            result.details = {"replay": f"{ctx.replay_prefix} --check {check.id}".strip()}
         return result
     except Mismatch as exc:
         result.message = str(exc)
@@ -144,4 +149,6 @@ def run_check(check: Check, ctx: Context, load_errors: dict[str, list[str]]) -> 
     result.status = outcome.status or ("passed" if fraction >= 1.0 else "failed")
     result.message = outcome.message
     result.details = outcome.details
+    if result.status == "timeout" and "replay" not in result.details:
+        result.details = {**result.details, "replay": f"{ctx.replay_prefix} --check {check.id}".strip()}
     return result

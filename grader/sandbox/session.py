@@ -222,7 +222,13 @@ def _student_error(error: Any) -> StudentError:
         message = f"your code returned {message}, which cannot be sent to the grader " \
                   "(only numbers, strings, lists and dicts can)"
         kind = ""
-    return StudentError(message[:1000], kind[:100], file, line)
+    frames = []
+    for f in error.get("frames") if isinstance(error.get("frames"), list) else []:
+        if isinstance(f, dict) and isinstance(f.get("file"), str) and type(f.get("line")) is int:
+            text = {k: f.get(k) if isinstance(f.get(k), str) else "" for k in ("function", "code")}
+            frames.append({"file": f["file"][:100], "line": f["line"], "function": text["function"][:100],
+                           "code": text["code"][:200]})
+    return StudentError(message[:1000], kind[:100], file, line, frames=frames[-20:])
 
 
 def _check_load(value: Any) -> dict:
