@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from grader.checks import Check, Context, checks_for_week, grader_error, run_check
-from grader.result import CheckResult, submission_result
+from grader.result import CheckResult, loss_summary, submission_result
 from grader.sandbox.errors import SandboxError
 from grader.sandbox.limits import Limits
 from grader.sandbox.session import StudentSession
@@ -238,6 +238,7 @@ def _grade(
         submission=str(submission),
         checks=checks_for_week(week),
         results=results,
+        message=loss_summary(results, problems),
         extra=extra,
     )
 

@@ -170,6 +170,12 @@ def _term(name: str, gain: str, expected_of, formula: str):
         gains = {"Kp": 0, "Ki": 0, "Kd": 0, gain: k}
         (a,) = _calls(ctx, gains, [pose], [goal], dt, memory=[{"E_k": E_k, "e_k_1": e_k_1}])
         e = _student_error(a, pose, goal)
+        true_error = ref.wrap(ref.theta_g(x, y, *goal) - theta)
+        if abs(e) < 1e-12 and abs(true_error) > 1e-3:  # e.g. the stub's e_k = 0: nothing to check yet
+            raise Mismatch(
+                f"{_where(pose, goal)} your heading error e_k was 0 (the heading to the goal is "
+                f"{fmt(true_error)} rad away), so the {name} term cannot be checked: fill in e_k first"
+            )
         expected = expected_of(e, k, dt, E_k, e_k_1)
         if not _close(a.w, expected):
             raise Mismatch(
