@@ -179,7 +179,7 @@ def sensor_geometry(sub, week: int, distances: list, pose: list) -> Any:
 def avoid_obstacles(sub, week: int, distances: list, pose: list, v: float = 0.2, dt: float = 0.033) -> Any:
     """AvoidObstacles.execute once with the IR distances fixed to `distances`: u_ao and the IR points."""
     robot = _robot(sub, week)
-    robot.get_ir_distances = lambda: list(distances)  # the conversion is checked elsewhere
+    setattr(robot, "get_ir_distances", lambda: list(distances))  # noqa: B010 - the conversion is checked elsewhere
     ctrl = sub.module("avoid_obstacles").AvoidObstacles()
     ctrl.get_transformation_matrix = _trusted_matrix
     result = ctrl.execute(robot, Pose2D(*pose), Inputs(v=v, x_g=0.0, y_g=0.0, theta_d=0.0), dt)

@@ -32,6 +32,7 @@ class Run:
     problem: str = ""  # the student's code broke the run: why, in words
     sandbox_error: SandboxError | None = None
     metrics: dict[str, Any] = field(default_factory=dict)
+    trace_key: str | None = None  # where keep() stored the trace (None: not kept)
 
     @property
     def collision(self) -> dict | None:
@@ -91,7 +92,7 @@ def run(
         add_row(trace, rec)
         if rec.collided:
             break
-        if goal is not None and math.dist(rec.pose[:2], goal) < goal_radius:
+        if goal is not None and goal_radius is not None and math.dist(rec.pose[:2], goal) < goal_radius:
             result.reached, result.t_goal = True, rec.t
             break
     trace.collision = sim.first_collision

@@ -44,7 +44,7 @@ class Context:
     traces: dict[str, dict] = field(default_factory=dict)  # scenario traces by check id (Seam 2)
     replay_prefix: str = ""  # e.g. "grade week2 path/to/folder"
     call_seconds: float = 2.0
-    memo: dict[str, Any] = field(default_factory=dict)  # runs shared between checks of one grading
+    memo: dict[Any, Any] = field(default_factory=dict)  # runs shared between checks of one grading
     submission: str = ""  # the folder as the student named it (for the replay snippet)
     last_probe: tuple[str, dict[str, Any]] | None = None  # the last probe sent: what a replay repeats
 

@@ -12,7 +12,7 @@ term, and the overwrite is reported once, by `memory`: each call must follow fro
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 from hypothesis import strategies as st
 
@@ -46,7 +46,9 @@ class Answer(NamedTuple):
 
 def _calls(ctx: Context, gains: dict, poses: list, goals: list, dt: float, fresh: bool = False,
            memory: list | None = None) -> list[Answer]:
-    calls = [{"pose": list(p), "goal": list(g), "v": V, "dt": dt} for p, g in zip(poses, goals, strict=True)]
+    calls: list[dict[str, Any]] = [
+        {"pose": list(p), "goal": list(g), "v": V, "dt": dt} for p, g in zip(poses, goals, strict=True)
+    ]
     for call, mem in zip(calls, memory or [], strict=False):
         if mem:
             call["memory"] = mem
@@ -61,9 +63,10 @@ def _calls(ctx: Context, gains: dict, poses: list, goals: list, dt: float, fresh
         v, w = vector(a.get("out"), 2, f"{where} your GoToGoal.execute result")
         kept = {k: number(a[k], f"{where} your {k}") if a.get(k) is not None else None
                 for k in ("theta_g", "e_k", "E_k")}
-        overwrote = a.get("overwrote") if isinstance(a.get("overwrote"), dict) else {}
-        out.append(Answer(v, w, kept["theta_g"], kept["e_k"], kept["E_k"],
-                          {k: x for k, x in overwrote.items() if k in ("Kp", "Ki", "Kd")}))
+        overwrote = a.get("overwrote")
+        gains_set = {k: x for k, x in overwrote.items() if k in ("Kp", "Ki", "Kd")} if isinstance(
+            overwrote, dict) else {}
+        out.append(Answer(v, w, kept["theta_g"], kept["e_k"], kept["E_k"], gains_set))
     return out
 
 
@@ -230,16 +233,20 @@ def memory(ctx: Context) -> Outcome:
                 "with Ki = Kd = 1 your w was always 0, so the controller keeps no memory to check "
                 "(are the integral and derivative terms there?)"
             )
-        memory = [None] + [{"E_k": a.E_k, "e_k_1": a.e_k} for a in kept[:-1]]
-        if any(m is not None and None in m.values() for m in memory):
-            raise Mismatch("your controller kept no E_k or e_k_1 between calls")
+        carried: list[tuple[float, float]] = []  # (E_k, e_k_1) each call left for the next
+        for a in kept[:-1]:
+            if a.E_k is None or a.e_k is None:
+                raise Mismatch("your controller kept no E_k or e_k_1 between calls")
+            carried.append((a.E_k, a.e_k))
+        memory = [None] + [{"E_k": e_sum, "e_k_1": e_last} for e_sum, e_last in carried]
         fresh = _calls(ctx, gains, poses, goals, dt, fresh=True, memory=memory)
         for n in range(1, len(poses)):
             if not _close(kept[n].w, fresh[n].w):
+                e_sum, e_last = carried[n - 1]
                 raise Mismatch(
                     f"with Ki = Kd = 1, headings {', '.join(fmt(t) for t in thetas)} and dt = {fmt(dt)}, "
                     f"call {n + 1} on the same controller gave w = {fmt(kept[n].w)}, but a new controller "
-                    f"with the same E_k = {fmt(memory[n]['E_k'])} and e_k_1 = {fmt(memory[n]['e_k_1'])} "
+                    f"with the same E_k = {fmt(e_sum)} and e_k_1 = {fmt(e_last)} "
                     f"gave {fmt(fresh[n].w)}: keep what the next call needs in E_k and e_k_1 only"
                 )
 

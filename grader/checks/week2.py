@@ -193,7 +193,8 @@ def go_to_angle_check(hidden: bool):
             angles = [rng.choice((-1, 1)) * rng.uniform(0.3, 2.8) for _ in range(3)]
         else:
             angles = [math.pi / 4, -2.0]
-        good, lines, details, runs = 0, [], {"runs": []}, []
+        good, lines, runs = 0, [], []
+        details: dict[str, list] = {"runs": []}
         for theta_d in angles:
             r = scenarios.run(ctx, f"theta_d = {theta_d:.3f}", {"theta_d": theta_d, "v": 0.1}, 8.0)
             runs.append(r)

@@ -63,6 +63,9 @@ def python_paths() -> list[str]:
     paths += [p for p in sys.path if p.endswith(("site-packages", "dist-packages")) and os.path.isdir(p)
               and p not in paths]
     for package in (simiam, grader):
+        if package.__file__ is None:  # a namespace package: some other folder named simiam or grader won
+            raise RuntimeError(f"{package.__name__} is imported from {list(package.__path__)}, not from the "
+                               "installed package: run from a folder without a stray one")
         root = str(Path(package.__file__).resolve().parent.parent)
         if root not in paths:
             paths.append(root)
