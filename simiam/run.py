@@ -154,19 +154,19 @@ def _stuck(exc: StepTimeout, folder: Path, when: str) -> str:
 
 
 def outside_edit_notes(week: WeekConfig, folder: Path) -> list[str]:
-    """The edits outside the code blocks, as `grade` lists them: `simiam run` runs them, `grade` does not.
-    Compared with the stubs generated from this checkout's solutions/ (nothing to say without them)."""
+    """The edits outside the code blocks, as `grade` lists them (against the same packaged skeletons):
+    `simiam run` runs them, `grade` does not."""
     from simiam.course.blocks import BlockError
+    from simiam.course.skeletons import SkeletonsMissing, skeleton_files
     from simiam.course.splice import splice
-    from simiam.course.stubs import generate
 
-    if not (REPO / "solutions" / week.name).is_dir():
+    try:
+        skeletons = skeleton_files(week.number)
+    except SkeletonsMissing:
         return []
-    prefix = f"assignments/{week.name}/"
     notes = []
-    for key, stub in sorted(generate(REPO / "solutions").files.items()):
-        name = key[len(prefix):]
-        if not key.startswith(prefix) or not name.endswith(".py") or not (folder / name).is_file():
+    for name, stub in skeletons.items():
+        if not (folder / name).is_file():
             continue
         try:
             result = splice(stub, (folder / name).read_text(encoding="utf-8", errors="replace"), name)

@@ -89,8 +89,8 @@ def generate(solutions: Path = ROOT / "solutions") -> Generated:
                 text, rows = stub_text(week, src.read_text(encoding="utf-8"), src.name)
             except BlockError as e:
                 raise BlockError(f"solutions/week{week}/{e.file}", e.line, e.message) from None
-            for folder in STUB_FOLDERS:
-                files[f"{folder.format(week=week)}/{src.name}"] = text
+            for pattern in STUB_FOLDERS:
+                files[f"{pattern.format(week=week)}/{src.name}"] = text
             if rows:
                 manifest[week][src.name] = rows
     files[str(MANIFEST.relative_to(ROOT))] = _manifest_source(manifest)
