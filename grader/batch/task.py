@@ -44,7 +44,7 @@ def grade_task(task: dict) -> dict:
                                   # what the student types at home to replay a failing case: their own
                                   # ./assignments/weekN, not the batch's temporary folder
                                   replay_prefix=f"grade week{week}")
-        timing = result.get("timing") if isinstance(result.get("timing"), dict) else {}
+        timing = tm if isinstance(tm := result.get("timing"), dict) else {}
         # the whole call, report writing included: what the batch adds is measured against this
         result["timing"] = {**timing, "grade_submission_seconds": round(time.monotonic() - began, 3)}
         html_path = report_dir / f"week{week}.html"
