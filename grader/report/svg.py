@@ -8,10 +8,10 @@ from numbers and `html.escape`d labels. The batch summary page can reuse `histog
 from __future__ import annotations
 
 import math
-from typing import TypeGuard
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from html import escape
+from typing import TypeGuard
 
 from markupsafe import Markup
 
