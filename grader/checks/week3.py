@@ -36,7 +36,7 @@ OVERSHOOT_HINT = "Hint: theta swings past theta_g: lower Kp or raise Kd in GoToG
 
 def _percent(ratio: float) -> str:
     """An overshoot as a percentage, or 'wildly off' where the figure would be absurd."""
-    return f"{ratio:.1%}" if ratio <= WILD else f"wildly off (more than {WILD * 100:.0f} %)"
+    return f"{ratio:.1%}" if ratio <= WILD else f"wildly off: more than {WILD * 100:.0f} %"
 
 
 def _ensure_w(ctx: Context, v: float, w: float) -> tuple[float, float]:
