@@ -10,12 +10,14 @@ import sys
 from pathlib import Path
 
 import mistakes
+import pytest
 
 from grader.checks.answers import fmt
 from grader.cli import main as grade_main
 from grader.grading import grade_submission
 from grader.sandbox.limits import Limits
 
+ROOT = Path(__file__).resolve().parents[2]
 CASE = "v=0.1,w=-2.0"
 CHECK = "week2.uni_to_diff.round_trip"
 
@@ -61,3 +63,31 @@ def test_a_property_timeout_has_a_replay_line(tmp_path: Path) -> None:
     scenario = grade_submission(2, folder, seed=1, only="week2.go_to_angle.reaches_theta_d", limits=fast)
     assert scenario["checks"][0]["status"] == "timeout"
     assert scenario["checks"][0]["details"]["replay"].endswith("--check week2.go_to_angle.reaches_theta_d")
+
+
+PROBE_CALLS = [  # one call of every probe, as the checks send them
+    ("uni_to_diff", {"week": 2, "v": 0.1, "w": -2.0}),
+    ("odometry", {"week": 2, "ticks": [[3, 1], [6, 2]], "start": [0.0, 0.0, 0.5]}),
+    ("ir_distances", {"week": 2, "raw": [1375, 500, 300, 250, 200]}),
+    ("ensure_w", {"week": 3, "v": 0.25, "w": 3.0}),
+    ("go_to_goal", {"week": 3, "gains": {"Kp": 1, "Ki": 0, "Kd": 0}, "fresh": False,
+                    "calls": [{"pose": [0, 0, 0], "goal": [1, 1], "v": 0.2, "dt": 0.05,
+                               "memory": {"E_k": 0.3, "e_k_1": -0.2}}]}),
+    ("transformation_matrix", {"week": 4, "x": 1.0, "y": -2.0, "theta": 0.5}),
+    ("sensor_geometry", {"week": 4, "distances": [0.2] * 5, "pose": [0.1, -0.1, 1.0]}),
+    ("avoid_obstacles", {"week": 4, "distances": [0.3, 0.1, 0.3, 0.3, 0.3], "pose": [0.3, -0.2, 0.7],
+                         "v": 0.15}),
+]
+
+
+@pytest.mark.parametrize(("name", "args"), PROBE_CALLS, ids=[n for n, _ in PROBE_CALLS])
+def test_every_probe_has_a_snippet_that_runs(name: str, args: dict) -> None:
+    from grader.probes import PROBES
+    from grader.replay import snippet
+
+    assert {n for n, _ in PROBE_CALLS} == set(PROBES)
+    code = snippet(str(ROOT / "solutions" / f"week{args['week']}"), (name, args))
+    assert code is not None
+    ran = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert ran.returncode == 0, ran.stderr
+    assert ran.stdout.strip()
