@@ -15,6 +15,7 @@ import functools
 import json
 import tempfile
 import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -31,6 +32,24 @@ ROOT = Path(__file__).resolve().parents[1]
 class CourseFilesMissing(RuntimeError):
     """The grader cannot use its pristine skeletons (missing from a broken installation, or out of date
     with solutions/ in a checkout), so it cannot splice anything. Not a student problem: grading stops."""
+
+
+@dataclass
+class _Job:
+    """One grading, as grade_submission was asked for it."""
+
+    week: int
+    submission: Path
+    seed: int
+    hidden: bool
+    sandbox: str
+    case: dict[str, Any] | None
+    limits: Limits | None
+    replay_prefix: str | None
+    selected: list[Check]
+    extra: dict[str, Any]
+    traces: dict[str, dict]
+    began: float
 
 
 def select_checks(week: int, hidden: bool, only: str | None = None) -> tuple[list[Check], list[Check]]:
@@ -165,8 +184,9 @@ def grade_submission(
         result = _invalid(week, seed, submission, selected, f"no such folder: {submission}", extra)
         return _finish(result, traces, out_dir)
     try:
-        result = _grade(week, submission, seed, hidden, sandbox, selected, extra, traces, case, limits,
-                        replay_prefix, began)
+        job = _Job(week, submission, seed, hidden, sandbox, case, limits, replay_prefix, selected, extra,
+                   traces, began)
+        result = _grade(job)
     except CourseFilesMissing:
         raise
     except Exception as exc:  # noqa: BLE001 - a grader bug: the student is told so, never a traceback
@@ -176,70 +196,60 @@ def grade_submission(
     return _finish(result, traces, out_dir)
 
 
-def _grade(
-    week: int,
-    submission: Path,
-    seed: int,
-    hidden: bool,
-    sandbox: str,
-    selected: list[Check],
-    extra: dict[str, Any],
-    traces: dict[str, dict],
-    case: dict[str, Any] | None,
-    limits: Limits | None,
-    replay_prefix: str | None,
-    began: float,
-) -> dict:
+def _grade(job: _Job) -> dict:
+    """Splice, load and run the checks of one submission folder (grade_submission's work)."""
     with tempfile.TemporaryDirectory(prefix="simiam-grade-") as tmp:
-        spliced, problems, notices = _splice(week, submission, Path(tmp))
-        extra["notices"] = notices
-        session = StudentSession(week, spliced, limits, sandbox=sandbox)
+        spliced, problems, notices = _splice(job.week, job.submission, Path(tmp))
+        job.extra["notices"] = notices
+        session = StudentSession(job.week, spliced, job.limits, sandbox=job.sandbox)
         try:
             try:
                 loaded = session.load()
             except SandboxError as exc:
-                extra["isolation"] = session.isolation
+                job.extra["isolation"] = session.isolation
                 message = f"your code could not be loaded at all: {exc.message}"
-                return _invalid(week, seed, submission, selected, message, extra)
-            for file, texts in _load_problems(week, loaded).items():
+                return _invalid(job.week, job.seed, job.submission, job.selected, message, job.extra)
+            for file, texts in _load_problems(job.week, loaded).items():
                 problems.setdefault(file, []).extend(texts)
-            extra["isolation"] = session.isolation
-            extra["isolation_note"] = session.isolation_note
+            job.extra["isolation"] = session.isolation
+            job.extra["isolation_note"] = session.isolation_note
             if not loaded.get("modules"):
                 message = "none of your files could be loaded: " + "; ".join(
                     t for v in problems.values() for t in v
                 )
-                return _invalid(week, seed, submission, selected, message, extra)
-            prefix = replay_prefix if replay_prefix is not None else f"grade week{week} {submission}"
+                return _invalid(job.week, job.seed, job.submission, job.selected, message, job.extra)
+            prefix = job.replay_prefix
+            if prefix is None:
+                prefix = f"grade week{job.week} {job.submission}"
             ctx = Context(
-                week=week,
-                seed=seed,
+                week=job.week,
+                seed=job.seed,
                 session=session,
-                hidden=hidden,
-                case=case,
-                traces=traces,
-                replay_prefix=prefix + (" --hidden" if hidden else "") + f" --seed {seed}",
-                submission=str(submission),
+                hidden=job.hidden,
+                case=job.case,
+                traces=job.traces,
+                replay_prefix=prefix + (" --hidden" if job.hidden else "") + f" --seed {job.seed}",
+                submission=str(job.submission),
             )
             results: list[CheckResult] = []
             timing = {}
-            for check in selected:
+            for check in job.selected:
                 t0 = time.monotonic()
                 results.append(run_check(check, ctx, problems))
                 timing[check.id] = round(time.monotonic() - t0, 3)
-            extra["problems"] = problems
-            extra["student_output"] = session.output()[-4000:]
-            extra["timing"] = {"total_seconds": round(time.monotonic() - began, 3), "checks": timing}
+            job.extra["problems"] = problems
+            job.extra["student_output"] = session.output()[-4000:]
+            job.extra["timing"] = {"total_seconds": round(time.monotonic() - job.began, 3), "checks": timing}
         finally:
             session.close()
     return submission_result(
-        week=week,
-        seed=seed,
-        submission=str(submission),
-        checks=checks_for_week(week),
+        week=job.week,
+        seed=job.seed,
+        submission=str(job.submission),
+        checks=checks_for_week(job.week),
         results=results,
         message=loss_summary(results, problems),
-        extra=extra,
+        extra=job.extra,
     )
 
 
