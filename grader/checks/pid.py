@@ -42,6 +42,7 @@ class Answer(NamedTuple):
     e_k: float | None  # the error the controller kept for the next call (e_k_1 = e_k, provided code)
     E_k: float | None  # the integral it kept (E_k = e_I, provided code)
     overwrote: dict
+    invalid: dict  # what theta_g, e_k or E_k was when not a finite number ("NaN"): only its check says so
 
 
 def _calls(ctx: Context, gains: dict, poses: list, goals: list, dt: float, fresh: bool = False,
@@ -61,12 +62,19 @@ def _calls(ctx: Context, gains: dict, poses: list, goals: list, dt: float, fresh
         if not isinstance(a, dict):
             raise Mismatch(f"{where} GoToGoal.execute gave no answer")
         v, w = vector(a.get("out"), 2, f"{where} your GoToGoal.execute result")
-        kept = {k: number(a[k], f"{where} your {k}") if a.get(k) is not None else None
-                for k in ("theta_g", "e_k", "E_k")}
+        kept: dict[str, float | None] = {}
+        invalid: dict[str, str] = {}
+        for k in ("theta_g", "e_k", "E_k"):
+            kept[k] = None
+            if a.get(k) is not None:
+                try:
+                    kept[k] = number(a[k], f"{where} your {k}")
+                except Mismatch as exc:  # charged by the check that reads this value, not by every one
+                    invalid[k] = str(exc)
         overwrote = a.get("overwrote")
         gains_set = {k: x for k, x in overwrote.items() if k in ("Kp", "Ki", "Kd")} if isinstance(
             overwrote, dict) else {}
-        out.append(Answer(v, w, kept["theta_g"], kept["e_k"], kept["E_k"], gains_set))
+        out.append(Answer(v, w, kept["theta_g"], kept["e_k"], kept["E_k"], gains_set, invalid))
     return out
 
 
@@ -92,6 +100,8 @@ def _close(a: float, b: float) -> bool:
 def theta_g(ctx: Context) -> Outcome:
     def case(ctx: Context, x: float, y: float, theta: float, x_g: float, y_g: float) -> None:
         (a,) = _calls(ctx, {"Kp": 1, "Ki": 0, "Kd": 0}, [[x, y, theta]], [[x_g, y_g]], 0.033)
+        if "theta_g" in a.invalid:
+            raise Mismatch(a.invalid["theta_g"])
         got, expected = a.theta_g, ref.theta_g(x, y, x_g, y_g)
         if got is None or ref.angle_diff(got, expected) > 1e-6:
             raise Mismatch(
@@ -127,6 +137,8 @@ def error_wrap(ctx: Context) -> Outcome:
     def case(ctx: Context, theta: float, x_g: float, y_g: float) -> None:
         pose, goal = [0.0, 0.0, theta], [x_g, y_g]
         (a,) = _calls(ctx, {"Kp": 1, "Ki": 0, "Kd": 0}, [pose], [goal], 0.033)
+        if "e_k" in a.invalid:
+            raise Mismatch(a.invalid["e_k"])
         theta_g = a.theta_g if a.theta_g is not None else ref.theta_g(0.0, 0.0, x_g, y_g)
         expected = ref.wrap(theta_g - theta)
         got = a.e_k if a.e_k is not None else a.w  # with Kp = 1 alone, w is the error
@@ -235,6 +247,9 @@ def memory(ctx: Context) -> Outcome:
             )
         carried: list[tuple[float, float]] = []  # (E_k, e_k_1) each call left for the next
         for a in kept[:-1]:
+            bad = [a.invalid[k] for k in ("E_k", "e_k") if k in a.invalid]
+            if bad:
+                raise Mismatch(bad[0])
             if a.E_k is None or a.e_k is None:
                 raise Mismatch("your controller kept no E_k or e_k_1 between calls")
             carried.append((a.E_k, a.e_k))
