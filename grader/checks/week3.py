@@ -30,8 +30,14 @@ REACH_HINT = (
     "Hint: the robot steers by your theta_g, the wrapped error and the PID terms (their own checks say which "
     "one is wrong), and ensure_w must keep w; replay the run in the report to see where it goes"
 )
-TUNE_HINT = "Hint: tune Kp, Ki, Kd in GoToGoal.__init__ (settle within 3 s, overshoot at most 10 %)"
-OVERSHOOT_HINT = "Hint: theta swings past theta_g: lower Kp or raise Kd in GoToGoal.__init__"
+TUNE_HINT = (
+    "Hint: first make theta_g, the wrapped error and the PID terms pass their own checks; then tune Kp, Ki, "
+    "Kd in GoToGoal.__init__ (settle within 3 s, overshoot at most 10 %)"
+)
+OVERSHOOT_HINT = (
+    "Hint: theta swings past theta_g (or away from it): first make theta_g, the wrapped error and the PID "
+    "terms pass their own checks; then lower Kp or raise Kd in GoToGoal.__init__"
+)
 
 
 def _percent(ratio: float) -> str:
