@@ -92,7 +92,8 @@ class _Worker:
         for frame in traceback.extract_tb(exc.__traceback__):
             if os.path.dirname(os.path.abspath(frame.filename)) == folder:
                 file, line = os.path.basename(frame.filename), frame.lineno
-                frames.append({"file": file, "line": line, "function": frame.name, "code": frame.line or ""})
+                frames.append({"file": file[:100], "line": line, "function": frame.name[:100],
+                               "code": (frame.line or "")[:200]})
         try:
             message = str(exc)
         except BaseException:  # noqa: BLE001 - a student __str__ may raise anything
