@@ -91,3 +91,17 @@ def test_every_probe_has_a_snippet_that_runs(name: str, args: dict) -> None:
     ran = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert ran.returncode == 0, ran.stderr
     assert ran.stdout.strip()
+
+
+def test_replayed_output_cannot_drive_the_terminal() -> None:
+    import io
+
+    from grader.replay import print_replay
+
+    out = io.StringIO()
+    hostile = {"student_output": "hi\x1b[2J\x1b]0;pwned\x07\n", "checks": [
+        {"details": {"traceback": "Traceback (your code, most recent call last):\nValueError: \x1b[31mred"}}]}
+    print_replay(hostile, out)
+    text = out.getvalue()
+    assert "\x1b" not in text and "\x07" not in text
+    assert "hi\\x1b[2J\\x1b]0;pwned\\x07" in text and "ValueError: \\x1b[31mred" in text
