@@ -190,7 +190,7 @@ def grade_submission(
     except CourseFilesMissing:
         raise
     except Exception as exc:  # noqa: BLE001 - a grader bug: the student is told so, never a traceback
-        message, details = grader_error(exc)
+        message, details = grader_error(exc, whole=True)
         extra["grader_error"] = details["grader_error"]
         result = _invalid(week, seed, submission, selected, message, extra)
     return _finish(result, traces, out_dir)

@@ -103,19 +103,21 @@ def sandbox_message(exc: SandboxError) -> tuple[str, str]:
 GRADER_ERROR = "grader error, not your fault"
 
 
-def grader_error(exc: BaseException) -> tuple[str, dict[str, Any]]:
+def grader_error(exc: BaseException, whole: bool = False) -> tuple[str, dict[str, Any]]:
     """(message, details) for a bug in the grader itself: the student is told it is not their fault and
-    to report it; the details keep where in the grader it happened, for whoever fixes it."""
+    to report it; the details keep where in the grader it happened, for whoever fixes it. `whole`: the
+    bug stopped the whole grading, not one check."""
     import traceback
     from pathlib import Path
 
     package = Path(__file__).resolve().parents[1]
     frames = [f for f in traceback.extract_tb(exc.__traceback__) if Path(f.filename).is_relative_to(package)]
     where = f"{Path(frames[-1].filename).relative_to(package)}:{frames[-1].lineno}" if frames else "?"
+    what, rest = ("your submission could not be graded", "") if whole else (
+        "this check could not be finished", "; your other checks are not affected")
     message = (
-        f"{GRADER_ERROR}: this check could not be finished because of a bug in the grader "
-        f"({type(exc).__name__} in grader/{where}). Please report it to the course staff with this "
-        "message; your other checks are not affected."
+        f"{GRADER_ERROR}: {what} because of a bug in the grader ({type(exc).__name__} in grader/{where}). "
+        f"Please report it to the course staff with this message{rest}."
     )
     return message, {"grader_error": {"type": type(exc).__name__, "message": str(exc)[:300], "where": where}}
 

@@ -36,5 +36,6 @@ def test_a_grading_that_crashes_says_so_and_names_no_student_fault(monkeypatch) 
     result = grade_submission(2, ROOT / "solutions" / "week2", seed=1)
     assert result["status"] == "invalid"
     assert result["message"].startswith(GRADER_ERROR) and "RuntimeError" in result["message"]
+    assert "your submission could not be graded" in result["message"] and "report it" in result["message"]
     assert result["grader_error"]["where"].startswith("grading.py:")
     assert all(c["status"] == "error" and c["message"] == result["message"] for c in result["checks"])
