@@ -116,6 +116,10 @@ def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
         traces=traces,
     )
     print_result(result)
+    if case is not None:
+        from grader.replay import print_replay
+
+        print_replay(result)
     if out_dir is not None:
         print(f"  report: {printable(out_dir / f'week{week}.html', multiline=False)} and week{week}.json")
     if args.json_file:

@@ -15,11 +15,12 @@ import functools
 import json
 import tempfile
 import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from grader.checks import Check, Context, checks_for_week, run_check
-from grader.result import CheckResult, submission_result
+from grader.checks import Check, Context, checks_for_week, grader_error, run_check
+from grader.result import CheckResult, loss_summary, submission_result
 from grader.sandbox.errors import SandboxError
 from grader.sandbox.limits import Limits
 from grader.sandbox.output import cut_middle
@@ -32,6 +33,24 @@ ROOT = Path(__file__).resolve().parents[1]
 class CourseFilesMissing(RuntimeError):
     """The grader cannot use its pristine skeletons (missing from a broken installation, or out of date
     with solutions/ in a checkout), so it cannot splice anything. Not a student problem: grading stops."""
+
+
+@dataclass
+class _Job:
+    """One grading, as grade_submission was asked for it."""
+
+    week: int
+    submission: Path
+    seed: int
+    hidden: bool
+    sandbox: str
+    case: dict[str, Any] | None
+    limits: Limits | None
+    replay_prefix: str | None
+    selected: list[Check]
+    extra: dict[str, Any]
+    traces: dict[str, dict]
+    began: float
 
 
 def select_checks(week: int, hidden: bool, only: str | None = None) -> tuple[list[Check], list[Check]]:
@@ -88,14 +107,26 @@ def _splice(week: int, submission: Path, tmp: Path) -> tuple[Path, dict[str, lis
     problems: dict[str, list[str]] = {}
     notices: list[str] = []
     for name, res in report.files.items():
-        if res.missing:
+        if res.missing and name in files_to_write(week):
             problems.setdefault(name, []).append(f"{name} is missing from your submission")
+        elif res.missing:
+            notices.append(
+                f"{name} is missing from your submission: you write nothing in it this week, so the version "
+                "the course ships was used"
+            )
         problems.setdefault(name, []).extend(f"{e} (the stub's code was used instead)" for e in res.errors)
         notices.extend(f"{edit} (edits outside the code blocks are not run)" for edit in res.outside_edits)
         if not problems[name]:
             del problems[name]
     notices.extend(f"{name}: not part of the assignment (ignored)" for name in report.extra_files)
     return spliced, problems, notices
+
+
+def files_to_write(week: int) -> set[str]:
+    """The files with a code block that is new in `week` (the others ship complete and may be missing)."""
+    from simiam.course.placeholders import PLACEHOLDERS
+
+    return {p.file for p in PLACEHOLDERS if p.week == week}
 
 
 def _load_problems(week: int, loaded: dict) -> dict[str, list[str]]:
@@ -153,57 +184,75 @@ def grade_submission(
     if not submission.is_dir():
         result = _invalid(week, seed, submission, selected, f"no such folder: {submission}", extra)
         return _finish(result, traces, out_dir)
+    try:
+        job = _Job(week, submission, seed, hidden, sandbox, case, limits, replay_prefix, selected, extra,
+                   traces, began)
+        result = _grade(job)
+    except CourseFilesMissing:
+        raise
+    except Exception as exc:  # noqa: BLE001 - a grader bug: the student is told so, never a traceback
+        message, details = grader_error(exc, whole=True)
+        extra["grader_error"] = details["grader_error"]
+        result = _invalid(week, seed, submission, selected, message, extra)
+    return _finish(result, traces, out_dir)
+
+
+def _grade(job: _Job) -> dict:
+    """Splice, load and run the checks of one submission folder (grade_submission's work)."""
     with tempfile.TemporaryDirectory(prefix="simiam-grade-") as tmp:
-        spliced, problems, notices = _splice(week, submission, Path(tmp))
-        extra["notices"] = notices
-        session = StudentSession(week, spliced, limits, sandbox=sandbox)
+        spliced, problems, notices = _splice(job.week, job.submission, Path(tmp))
+        job.extra["notices"] = notices
+        session = StudentSession(job.week, spliced, job.limits, sandbox=job.sandbox)
         try:
             try:
                 loaded = session.load()
             except SandboxError as exc:
-                extra["isolation"] = session.isolation
-                extra["isolation_note"] = session.isolation_note
+                job.extra["isolation"] = session.isolation
+                job.extra["isolation_note"] = session.isolation_note
                 message = f"your code could not be loaded at all: {exc.message}"
-                return _finish(_invalid(week, seed, submission, selected, message, extra), traces, out_dir)
-            for file, texts in _load_problems(week, loaded).items():
+                return _invalid(job.week, job.seed, job.submission, job.selected, message, job.extra)
+            for file, texts in _load_problems(job.week, loaded).items():
                 problems.setdefault(file, []).extend(texts)
-            extra["isolation"] = session.isolation
-            extra["isolation_note"] = session.isolation_note
+            job.extra["isolation"] = session.isolation
+            job.extra["isolation_note"] = session.isolation_note
             if not loaded.get("modules"):
                 message = "none of your files could be loaded: " + "; ".join(
                     t for v in problems.values() for t in v
                 )
-                return _finish(_invalid(week, seed, submission, selected, message, extra), traces, out_dir)
-            prefix = replay_prefix if replay_prefix is not None else f"grade week{week} {submission}"
+                return _invalid(job.week, job.seed, job.submission, job.selected, message, job.extra)
+            prefix = job.replay_prefix
+            if prefix is None:
+                prefix = f"grade week{job.week} {job.submission}"
             ctx = Context(
-                week=week,
-                seed=seed,
+                week=job.week,
+                seed=job.seed,
                 session=session,
-                hidden=hidden,
-                case=case,
-                traces=traces,
-                replay_prefix=prefix + (" --hidden" if hidden else "") + f" --seed {seed}",
+                hidden=job.hidden,
+                case=job.case,
+                traces=job.traces,
+                replay_prefix=prefix + (" --hidden" if job.hidden else "") + f" --seed {job.seed}",
+                submission=str(job.submission),
             )
             results: list[CheckResult] = []
             timing = {}
-            for check in selected:
+            for check in job.selected:
                 t0 = time.monotonic()
                 results.append(run_check(check, ctx, problems))
                 timing[check.id] = round(time.monotonic() - t0, 3)
-            extra["problems"] = problems
-            extra["student_output"] = cut_middle(session.output(), 4000)
-            extra["timing"] = {"total_seconds": round(time.monotonic() - began, 3), "checks": timing}
+            job.extra["problems"] = problems
+            job.extra["student_output"] = cut_middle(session.output(), 4000)
+            job.extra["timing"] = {"total_seconds": round(time.monotonic() - job.began, 3), "checks": timing}
         finally:
             session.close()
-    result = submission_result(
-        week=week,
-        seed=seed,
-        submission=str(submission),
-        checks=checks_for_week(week),
+    return submission_result(
+        week=job.week,
+        seed=job.seed,
+        submission=str(job.submission),
+        checks=checks_for_week(job.week),
         results=results,
-        extra=extra,
+        message=loss_summary(results, problems),
+        extra=job.extra,
     )
-    return _finish(result, traces, out_dir)
 
 
 def _invalid(

@@ -129,17 +129,11 @@ def run_property(
             runner()
     except Mismatch as exc:
         if state["fatal"] is not None:
-            from grader.checks import sandbox_message
-
-            status, message = sandbox_message(state["fatal"])
-            return Outcome(0.0, message, {"case": state["last"]}, status=status)
+            return _fatal(ctx, check_id, state["fatal"], state["last"])
         return _failed(ctx, check_id, str(exc), state["last"])
     except HypothesisException as exc:  # e.g. a flaky answer: the same input passed once and failed once
         if state["fatal"] is not None:  # a timeout mid-search can look flaky to Hypothesis: say what it was
-            from grader.checks import sandbox_message
-
-            status, message = sandbox_message(state["fatal"])
-            return Outcome(0.0, message, {"case": state["last"]}, status=status)
+            return _fatal(ctx, check_id, state["fatal"], state["last"])
         return Outcome(
             0.0,
             f"your code gave different answers to the same input ({type(exc).__name__})",
@@ -149,13 +143,43 @@ def run_property(
 
 
 def _one(ctx: Context, check_id: str, case: Case, inputs: dict[str, Any], replayed: bool = False) -> Outcome:
+    """One case. A replay (`replayed`) also keeps the traceback of the student's code and a snippet that
+    calls their function with these inputs (grader/replay.py)."""
+    from grader.replay import snippet, traceback_text
+
+    ctx.last_probe = None
     try:
         case(ctx, **inputs)
     except Mismatch as exc:
-        return _failed(ctx, check_id, str(exc), inputs)
+        found = _failed(ctx, check_id, str(exc), inputs)
     except StudentError as exc:
-        return _failed(ctx, check_id, _sandbox_words(exc, inputs), inputs)
-    return Outcome(1.0, "this case passes" if replayed else "", {"case": inputs})
+        found = _failed(ctx, check_id, _sandbox_words(exc, inputs), inputs)
+        found.details["traceback"] = traceback_text(exc)
+    except SandboxError as exc:  # a timeout or a dead worker on this case: say so, and how to replay it
+        from grader.checks import sandbox_message
+
+        status, message = sandbox_message(exc)
+        found = _failed(ctx, check_id, message, inputs)
+        found.status = status
+    else:
+        return Outcome(1.0, "this case passes" if replayed else "", {"case": inputs})
+    if replayed:
+        code = snippet(ctx.submission, ctx.last_probe)
+        if code:
+            found.details["snippet"] = code
+    return found
+
+
+def _fatal(ctx: Context, check_id: str, exc: SandboxError, inputs: dict[str, Any] | None) -> Outcome:
+    """A timeout or dead worker stopped the search: its message, and the replay line of that input."""
+    from grader.checks import sandbox_message
+
+    status, message = sandbox_message(exc)
+    found = _failed(ctx, check_id, message, inputs)
+    found.status = status
+    if inputs is not None:
+        found.details["case"] = inputs
+    return found
 
 
 def _failed(ctx: Context, check_id: str, words: str, inputs: dict[str, Any] | None) -> Outcome:

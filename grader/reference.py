@@ -7,6 +7,7 @@ rest is the course's formulas written out once (reference/original-simulator.md 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 from simiam.robot import dynamics
 from simiam.robot.ir_sensor import distance_to_raw, ir_voltage
@@ -64,7 +65,7 @@ def m_per_tick(spec: RobotSpec) -> float:
 
 
 def odometry_step(
-    spec: RobotSpec, pose: tuple[float, float, float], d_ticks_r: int, d_ticks_l: int
+    spec: RobotSpec, pose: Sequence[float], d_ticks_r: int, d_ticks_l: int
 ) -> tuple[float, float, float]:
     """The course's odometry update (heading of the old pose, theta not wrapped)."""
     x, y, theta = pose
@@ -157,7 +158,7 @@ def apply(t: list[list[float]], point: tuple[float, float]) -> tuple[float, floa
 
 
 def sensor_points(
-    spec: RobotSpec, distances: list[float], pose: tuple[float, float, float]
+    spec: RobotSpec, distances: list[float], pose: Sequence[float]
 ) -> tuple[list[tuple[float, float]], list[tuple[float, float]]]:
     """Each IR distance as a point in the robot frame (via the mount) and the world frame (via the pose)."""
     robot_frame = [

@@ -126,3 +126,17 @@ def submission_result(
 def all_passed(result: dict[str, Any]) -> bool:
     """True when the submission was graded and every check passed (the CLI's exit status 0)."""
     return result.get("status") == "graded" and all(c["status"] == "passed" for c in result["checks"])
+
+
+def loss_summary(results: list[CheckResult], problems: dict[str, list[str]]) -> str:
+    """Why points were lost, in one line for the gradebook and the class summary ("" when none were):
+    the files that did not load first (a missing file, a syntax error), then the checks that lost points."""
+    lost = [r for r in results if r.points < r.max_points]
+    if not lost:
+        return ""
+    parts = []
+    if problems:
+        parts.append("code that did not load: " + "; ".join(texts[0] for texts in problems.values() if texts))
+    names = ", ".join(r.id for r in lost[:6]) + (f" and {len(lost) - 6} more" if len(lost) > 6 else "")
+    parts.append(f"points lost on {len(lost)} of {len(results)} checks: {names}")
+    return ". ".join(parts)

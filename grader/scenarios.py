@@ -32,6 +32,7 @@ class Run:
     problem: str = ""  # the student's code broke the run: why, in words
     sandbox_error: SandboxError | None = None
     metrics: dict[str, Any] = field(default_factory=dict)
+    trace_key: str | None = None  # where keep() stored the trace (None: not kept)
 
     @property
     def collision(self) -> dict | None:
@@ -91,7 +92,7 @@ def run(
         add_row(trace, rec)
         if rec.collided:
             break
-        if goal is not None and math.dist(rec.pose[:2], goal) < goal_radius:
+        if goal is not None and goal_radius is not None and math.dist(rec.pose[:2], goal) < goal_radius:
             result.reached, result.t_goal = True, rec.t
             break
     trace.collision = sim.first_collision
@@ -159,6 +160,7 @@ def settle_and_overshoot(trace: Trace, goal: tuple[float, float]) -> tuple[float
     settle = (k - 20) dt with k the first index that ends 21 consecutive samples with |(r - y)/r| < 0.1
     (None if it never settles). overshoot = |r_i - y_i| / |r_i| at the sample where y goes furthest in the
     direction of r (min y for a goal heading below 0, as the course's goal (0, -1); max y otherwise).
+    r - y is an angle difference and is wrapped into [-pi, pi] (the course's plot never crosses +-pi).
     """
     s = trace.steps
     dt = trace.dt
@@ -166,13 +168,15 @@ def settle_and_overshoot(trace: Trace, goal: tuple[float, float]) -> tuple[float
     r = [ref.theta_g(px, py, *goal) for px, py in zip(s["x"], s["y"], strict=False)]
     run_length, settle = 0, None
     for k, (rk, yk) in enumerate(zip(r, y, strict=False)):
-        run_length = run_length + 1 if rk != 0 and abs((rk - yk) / rk) < 0.1 else 0
+        run_length = run_length + 1 if rk != 0 and abs(ref.wrap(rk - yk) / rk) < 0.1 else 0
         if run_length == 21:
             settle = (k - 20) * dt
             break
     sign = -1.0 if r[0] < 0 else 1.0
     i = max(range(len(y)), key=lambda k: sign * y[k])
-    overshoot = abs(r[i] - y[i]) / abs(r[i]) if r[i] != 0 else 1.0
+    # the difference of two angles is wrapped: a heading of -3.1 is 0.08 rad from a goal bearing of 3.1,
+    # not 6.2 rad (unwrapped, a heading that never passed the bearing reported 178 % or 306 %)
+    overshoot = abs(ref.wrap(r[i] - y[i])) / abs(r[i]) if r[i] != 0 else 1.0
     return settle, overshoot
 
 

@@ -3,7 +3,9 @@
 Loads the code in this process (trusted: it is the student's own machine), runs the week's scenario
 headless, writes the trace (CSV and JSON) and the replay page, and prints a short summary. A submission
 that does not load prints its LoadErrors (file:line: message) and exits 1; an exception inside the
-student's code during the run is reported the same way, after writing the trace up to that step.
+student's code during the run is reported the same way, after writing the trace up to that step, and so is
+a step that runs longer than grade allows (an endless loop: where it was running, as grade says it). Edits
+outside the code blocks are run here but not by grade: they are listed as warnings first.
 """
 
 from __future__ import annotations
@@ -18,11 +20,13 @@ from simiam.control.supervisor import Supervisor
 from simiam.course.folders import WeekFolderNotFound, week_folder
 from simiam.course.loader import load_submission, locate_in_folder
 from simiam.course.weeks import WeekConfig, week_config
+from simiam.run_limit import StepTimeout, step_limit, stuck_at
 from simiam.simulator import BrainError, Simulator, add_row
 from simiam.trace import Trace
 from simiam.world import WorldFileError, load_world
 
 MAX_STEPS = 1_000_000  # 9 simulated hours at 0.033 s; a trace of that size is already ~1 GB in memory
+STEP_SECONDS = 2.0  # wall time one step of the student's code may take (grade's limit per call)
 
 
 def resolve_folder(week: WeekConfig, path: str | None, solutions: bool) -> Path:
@@ -65,6 +69,8 @@ def main(args: argparse.Namespace) -> int:
     except (WorldFileError, OSError) as exc:
         return _fail(f"simiam run: cannot read the world: {exc}", 2)
 
+    for note in outside_edit_notes(week, folder):
+        print(f"warning: {note}", file=sys.stderr)
     sub = load_submission(folder, week)
     if not sub.ok:
         print(f"Your {week.name} code in {folder} could not be loaded:", file=sys.stderr)
@@ -74,9 +80,14 @@ def main(args: argparse.Namespace) -> int:
 
     start = world.start
     try:
-        brain = LocalBrain(sub, week, start=start)
-        sim = Simulator(world, brain, week.spec, dt=args.dt, start=start)
-    except Exception as exc:  # noqa: BLE001 - the student's __init__ may raise anything
+        with step_limit(STEP_SECONDS):
+            brain = LocalBrain(sub, week, start=start)
+            sim = Simulator(world, brain, week.spec, dt=args.dt, start=start)
+    except StepTimeout as exc:
+        return _fail(_stuck(exc, folder, "while setting up the supervisor"), 1)
+    except BaseException as exc:  # noqa: BLE001 - the student's __init__ may raise anything, sys.exit too
+        if isinstance(exc, KeyboardInterrupt):
+            raise
         return _fail(_student_error(exc, folder, "while setting up the supervisor"), 1)
 
     trace = sim.new_trace()
@@ -88,11 +99,17 @@ def main(args: argparse.Namespace) -> int:
     error = None
     for _ in range(int(round(seconds / args.dt))):
         try:
-            rec = sim.step()
+            with step_limit(STEP_SECONDS):
+                rec = sim.step()
         except BrainError as exc:
             error = f"{folder.name}: your code returned an invalid command at t = {sim.t:.3f} s: {exc}"
             break
-        except Exception as exc:  # noqa: BLE001 - report the student's exception, keep the trace so far
+        except StepTimeout as exc:
+            error = _stuck(exc, folder, f"at t = {sim.t:.3f} s")
+            break
+        except BaseException as exc:  # noqa: BLE001 - the student's exception (sys.exit too); keep the trace
+            if isinstance(exc, KeyboardInterrupt):
+                raise
             error = _student_error(exc, folder, f"at t = {sim.t:.3f} s")
             break
         add_row(trace, rec)
@@ -122,8 +139,42 @@ def main(args: argparse.Namespace) -> int:
 def _student_error(exc: BaseException, folder: Path, when: str) -> str:
     file, line = locate_in_folder(exc, folder)
     where = f"{file}:{line}: " if file else ""
+    if isinstance(exc, SystemExit):
+        return f"{where}your code called sys.exit({exc.code if exc.code is not None else ''}) ({when})"
     text = str(exc)
     return f"{where}{type(exc).__name__}{': ' + text if text else ''} ({when})"
+
+
+def _stuck(exc: StepTimeout, folder: Path, when: str) -> str:
+    """The message `grade` gives for an endless loop: the time limit and where the code was running."""
+    why = (f"your code did not answer in time: no answer within {STEP_SECONDS:g} s, the time limit per "
+           f"step ({when})")
+    where = stuck_at(exc, folder)
+    return f"{why}; it was still running at {where} (an endless loop or a long wait?)" if where else why
+
+
+def outside_edit_notes(week: WeekConfig, folder: Path) -> list[str]:
+    """The edits outside the code blocks, as `grade` lists them (against the same packaged skeletons):
+    `simiam run` runs them, `grade` does not."""
+    from simiam.course.blocks import BlockError
+    from simiam.course.skeletons import SkeletonsMissing, skeleton_files
+    from simiam.course.splice import splice
+
+    try:
+        skeletons = skeleton_files(week.number)
+    except SkeletonsMissing:
+        return []
+    notes = []
+    for name, stub in skeletons.items():
+        if not (folder / name).is_file():
+            continue
+        try:
+            result = splice(stub, (folder / name).read_text(encoding="utf-8", errors="replace"), name)
+        except BlockError:  # broken markers: grade says so; the run itself uses the whole file
+            continue
+        notes += [f"{edit} (simiam run ran this edit, but grade runs only the code blocks)"
+                  for edit in result.outside_edits]
+    return notes
 
 
 def _write_replay(trace_json: dict, path: Path) -> Path | None:

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import Any, Protocol, TypeGuard
 
 from simiam.physics.collision import plate_collides
 from simiam.physics.ir_ranging import cone_range
@@ -52,7 +52,7 @@ class ConstantBrain:
         return {"vel_r": self.vel_r, "vel_l": self.vel_l, "estimate": None, "state": "constant", "debug": {}}
 
 
-def _real(x: Any) -> bool:
+def _real(x: Any) -> TypeGuard[float]:
     """A finite int or float (bool and numpy scalars are not), small enough to become a float."""
     t = type(x)
     if t is float:
@@ -318,7 +318,7 @@ class Simulator:
                                      "pose": [self._x, self._y, self._theta]}
         return self._collided
 
-    def _finish(self, command: dict) -> StepRecord:
+    def _finish(self, command: dict | None) -> StepRecord:
         self._last = self._record(command)
         return self._last
 

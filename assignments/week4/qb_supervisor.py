@@ -19,8 +19,13 @@ from .go_to_goal import GoToGoal
 
 
 def sign(x):
-    """MATLAB's sign: -1, 0 or 1."""
-    return (x > 0) - (x < 0)
+    """MATLAB's sign: -1, 0 or 1, for any real number (int, float, bool or a numpy scalar)."""
+    # not (x > 0) - (x < 0): numpy refuses to subtract the numpy bools a numpy float's comparisons give
+    if x > 0:
+        return 1
+    if x < 0:
+        return -1
+    return 0
 
 
 class QBSupervisor(Supervisor):

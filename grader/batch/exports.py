@@ -62,7 +62,7 @@ def gradebook_csv(results: dict[str, dict]) -> str:
     return buffer.getvalue()
 
 
-def _number(value: object) -> object:
+def _number(value: object) -> float | str:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         return ""
     return round(float(value), 6)

@@ -201,7 +201,7 @@ class WorkerPool:
                 # wake for a reply, a death (EOF on the reply pipe), the nearest deadline, or at least
                 # once a second to notice a child that died while a grandchild still holds its pipe
                 timeout = max(0.0, min(min(s.deadline for s in busy) - time.monotonic(), 1.0))
-                wait([s.conn for s in busy], timeout=timeout)
+                wait([s.conn for s in busy if s.conn is not None], timeout=timeout)
                 for slot in busy:
                     outcome = self._poll(slot)
                     if outcome is not None:

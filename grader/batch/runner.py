@@ -220,7 +220,7 @@ class _Run:
                            "grader": self.grader, "root": submission.root}
         if outcome.get("traceback"):
             result["batch"]["traceback"] = outcome["traceback"]
-        timing = result.get("timing") if isinstance(result.get("timing"), dict) else {}
+        timing = tm if isinstance(tm := result.get("timing"), dict) else {}
         result["timing"] = {**timing, "batch_seconds": round(float(outcome.get("seconds") or 0.0), 3)}
         stem = self.stems[sid]
         write_atomic(self.out / f"{stem}.html", html if isinstance(html, str) else fallback_page(sid, result))
@@ -236,7 +236,7 @@ class _Run:
         if outcome.get("status") == "ok":
             value = outcome.get("value")
             result = value.get("result") if isinstance(value, dict) else None
-            if isinstance(result, dict) and result.get("status") in STATUSES:
+            if isinstance(value, dict) and isinstance(result, dict) and result.get("status") in STATUSES:
                 return dict(result), value.get("html")
             outcome = {"status": "crashed", "message": "the grader returned no usable result"}
         status = outcome.get("status") if outcome.get("status") in STATUSES else "crashed"
@@ -256,7 +256,8 @@ class _Run:
         write_exports(self.out, results, stems)
         counts = dict.fromkeys(STATUSES, 0)
         for result in results.values():
-            counts[result.get("status") if result.get("status") in counts else "crashed"] += 1
+            status = result.get("status")
+            counts[status if isinstance(status, str) and status in counts else "crashed"] += 1
         incomplete = len(self.students) - len(results)
         meta = {"week": self.options.week, "seed": self.options.seed, "hidden": self.options.hidden,
                 "grader": self.grader, "incomplete": incomplete}
@@ -279,7 +280,7 @@ class _Run:
         """True if a stored result was graded with this run's week, seed, grader and --hidden. An older
         one (a rerun with another seed, stopped half-way) is left out of the class files and counted as
         not graded yet, so the gradebook never mixes two gradings."""
-        batch = stored.get("batch") if isinstance(stored.get("batch"), dict) else {}
+        batch = b if isinstance(b := stored.get("batch"), dict) else {}
         return (stored.get("week") == self.options.week and stored.get("seed") == self.options.seed
                 and batch.get("grader") == self.grader
                 and bool(stored.get("hidden", self.options.hidden)) == self.options.hidden)

@@ -45,8 +45,10 @@ def grade_task(task: dict) -> dict:
                                   replay_prefix=f"grade week{week}", traces=traces)
         # The temporary path differs on every run and machine; the student's own name does not. It is
         # replaced in the result's plain text, before the report renders (and escapes) it: never in HTML.
-        result = replace_text(result, str(submission), task.get("display") or task["student"])
-        timing = result.get("timing") if isinstance(result.get("timing"), dict) else {}
+        renamed = replace_text(result, str(submission), task.get("display") or task["student"])
+        assert isinstance(renamed, dict)  # replace_text keeps the shape of what it is given
+        result = renamed
+        timing = tm if isinstance(tm := result.get("timing"), dict) else {}
         try:
             from grader.report.html import render_report
         except ImportError:  # a grader installed without its report package: the batch writes a plain page

@@ -44,7 +44,9 @@ class Context:
     traces: dict[str, dict] = field(default_factory=dict)  # scenario traces by check id (Seam 2)
     replay_prefix: str = ""  # e.g. "grade week2 path/to/folder"
     call_seconds: float = 2.0
-    memo: dict[str, Any] = field(default_factory=dict)  # runs shared between checks of one grading
+    memo: dict[Any, Any] = field(default_factory=dict)  # runs shared between checks of one grading
+    submission: str = ""  # the folder as the student named it (for the replay snippet)
+    last_probe: tuple[str, dict[str, Any]] | None = None  # the last probe sent: what a replay repeats
 
     @property
     def config(self):
@@ -58,6 +60,7 @@ class Context:
 
     def probe(self, name: str, **args: Any) -> Any:
         """Run probe `name` in the student's worker; the untrusted JSON answer."""
+        self.last_probe = (name, {"week": self.week, **args})
         return self.session.call(
             "probe", name=name, args={"week": self.week, **args}, timeout=self.call_seconds
         )
@@ -97,6 +100,28 @@ def sandbox_message(exc: SandboxError) -> tuple[str, str]:
     return "error", str(exc)
 
 
+GRADER_ERROR = "grader error, not your fault"
+
+
+def grader_error(exc: BaseException, whole: bool = False) -> tuple[str, dict[str, Any]]:
+    """(message, details) for a bug in the grader itself: the student is told it is not their fault and
+    to report it; the details keep where in the grader it happened, for whoever fixes it. `whole`: the
+    bug stopped the whole grading, not one check."""
+    import traceback
+    from pathlib import Path
+
+    package = Path(__file__).resolve().parents[1]
+    frames = [f for f in traceback.extract_tb(exc.__traceback__) if Path(f.filename).is_relative_to(package)]
+    where = f"{Path(frames[-1].filename).relative_to(package)}:{frames[-1].lineno}" if frames else "?"
+    what, rest = ("your submission could not be graded", "") if whole else (
+        "this check could not be finished", "; your other checks are not affected")
+    message = (
+        f"{GRADER_ERROR}: {what} because of a bug in the grader ({type(exc).__name__} in grader/{where}). "
+        f"Please report it to the course staff with this message{rest}."
+    )
+    return message, {"grader_error": {"type": type(exc).__name__, "message": str(exc)[:300], "where": where}}
+
+
 def run_check(check: Check, ctx: Context, load_errors: dict[str, list[str]]) -> CheckResult:
     """Run one check and turn whatever happens into a CheckResult (never raises for student problems)."""
     result = CheckResult(
@@ -111,19 +136,21 @@ def run_check(check: Check, ctx: Context, load_errors: dict[str, list[str]]) -> 
         outcome = check.run(ctx)
     except SandboxError as exc:
         result.status, result.message = sandbox_message(exc)
+        if result.status == "timeout":  # the command that runs this check alone, to see where it hangs
+            result.details = {"replay": f"{ctx.replay_prefix} --check {check.id}".strip()}
         return result
     except Mismatch as exc:
         result.message = str(exc)
         return result
     except Exception as exc:  # noqa: BLE001 - a grader bug must not stop the other checks (fail closed)
         result.status = "error"
-        result.message = (
-            f"the grader could not finish this check (internal error {type(exc).__name__}: {exc})"
-        )
+        result.message, result.details = grader_error(exc)
         return result
     fraction = min(max(float(outcome.fraction), 0.0), 1.0)
     result.points = fraction * check.weight
     result.status = outcome.status or ("passed" if fraction >= 1.0 else "failed")
     result.message = outcome.message
     result.details = outcome.details
+    if result.status == "timeout" and "replay" not in result.details:
+        result.details = {**result.details, "replay": f"{ctx.replay_prefix} --check {check.id}".strip()}
     return result

@@ -62,8 +62,24 @@ def matrix(value: Any, rows: int, cols: int, what: str) -> list[list[float]]:
 
 
 def fmt(x: float) -> str:
-    """A number as a student reads it: up to 4 significant decimals, no trailing noise."""
+    """A number as a student reads it: up to 4 significant decimals, no trailing noise, and an ASCII minus
+    (students paste these numbers into Python)."""
     if x == 0:
         return "0"
-    text = f"{x:.4g}" if abs(x) < 1e-3 or abs(x) >= 1e4 else f"{x:.4f}".rstrip("0").rstrip(".")
-    return text.replace("-", "\u2212")
+    return f"{x:.4g}" if abs(x) < 1e-3 or abs(x) >= 1e4 else f"{x:.4f}".rstrip("0").rstrip(".")
+
+
+WILD = 10.0  # a relative error beyond 1000 % is not a figure worth reading
+
+
+def off_by(relative: float) -> str:
+    """'12 % off', or 'wildly off' when the figure would be absurd (222121189413483552 % off)."""
+    if not relative <= WILD:  # NaN too
+        return f"wildly off (more than {WILD * 100:.0f} % from it)"
+    return f"{relative:.0%} off"
+
+
+def amount(x: float, unit: str, sane: float) -> str:
+    """`x unit`, or 'wildly off (x unit)' when |x| is far beyond `sane` (a distance of -8.9e13 m)."""
+    text = f"{fmt(x)} {unit}".rstrip()
+    return text if abs(x) <= sane else f"wildly off ({text})"

@@ -1,14 +1,18 @@
 """Week 3 go-to-goal checks: theta_g, the wrapped error, and the P, I and D terms each on its own.
 
-Each check sets the gains so that only the term it checks is in w (Kp only, Ki only, Kd only), calls the
-student's GoToGoal.execute on poses where the heading error needs no wrapping, and compares w with the
-term computed from the student's own theta_g: one mistake costs one check. `memory` checks that E_k and
-e_k_1 carry over between calls by comparing a sequence of calls with fresh controllers.
+Each term check sets the gains so that only the term it checks is in w (Kp only, Ki only, Kd only), sets
+the controller's memory (E_k, e_k_1) as earlier calls would have left it, calls the student's
+GoToGoal.execute and compares w with the term computed from the student's own error e_k (which the provided
+code keeps in e_k_1): one mistake costs one check, and a wrong wrap or theta_g is charged to its own check
+only. The gains are pinned inside the worker, so an execute that overwrites them is still checked term by
+term, and the overwrite is reported once, by `memory`: each call must follow from what the controller keeps
+(E_k and e_k_1) and nothing else.
 """
 
 from __future__ import annotations
 
 import math
+from typing import Any, NamedTuple
 
 from hypothesis import strategies as st
 
@@ -26,10 +30,29 @@ _facing = st.floats(-1.4, 1.4)
 _ahead = st.floats(0.2, 2.0)
 _side = st.floats(-2.0, 2.0)
 _dts = st.sampled_from([0.01, 0.033, 0.05, 0.1])
+_memory = st.floats(-1.0, 1.0)  # E_k and e_k_1 as earlier calls may have left them
 
 
-def _calls(ctx: Context, gains: dict, poses: list, goals: list, dt: float, fresh: bool = False) -> list:
-    calls = [{"pose": list(p), "goal": list(g), "v": V, "dt": dt} for p, g in zip(poses, goals, strict=True)]
+class Answer(NamedTuple):
+    """One GoToGoal.execute call as the student's code answered it (all validated numbers)."""
+
+    v: float
+    w: float
+    theta_g: float | None
+    e_k: float | None  # the error the controller kept for the next call (e_k_1 = e_k, provided code)
+    E_k: float | None  # the integral it kept (E_k = e_I, provided code)
+    overwrote: dict
+    invalid: dict  # what theta_g, e_k or E_k was when not a finite number ("NaN"): only its check says so
+
+
+def _calls(ctx: Context, gains: dict, poses: list, goals: list, dt: float, fresh: bool = False,
+           memory: list | None = None) -> list[Answer]:
+    calls: list[dict[str, Any]] = [
+        {"pose": list(p), "goal": list(g), "v": V, "dt": dt} for p, g in zip(poses, goals, strict=True)
+    ]
+    for call, mem in zip(calls, memory or [], strict=False):
+        if mem:
+            call["memory"] = mem
     answer = ctx.probe("go_to_goal", gains=gains, calls=calls, fresh=fresh)
     if not isinstance(answer, list) or len(answer) != len(calls):
         raise Mismatch("GoToGoal.execute did not answer every call")
@@ -39,9 +62,19 @@ def _calls(ctx: Context, gains: dict, poses: list, goals: list, dt: float, fresh
         if not isinstance(a, dict):
             raise Mismatch(f"{where} GoToGoal.execute gave no answer")
         v, w = vector(a.get("out"), 2, f"{where} your GoToGoal.execute result")
-        theta_g = a.get("theta_g")
-        theta_g = number(theta_g, f"{where} your theta_g") if theta_g is not None else None
-        out.append((v, w, theta_g))
+        kept: dict[str, float | None] = {}
+        invalid: dict[str, str] = {}
+        for k in ("theta_g", "e_k", "E_k"):
+            kept[k] = None
+            if a.get(k) is not None:
+                try:
+                    kept[k] = number(a[k], f"{where} your {k}")
+                except Mismatch as exc:  # charged by the check that reads this value, not by every one
+                    invalid[k] = str(exc)
+        overwrote = a.get("overwrote")
+        gains_set = {k: x for k, x in overwrote.items() if k in ("Kp", "Ki", "Kd")} if isinstance(
+            overwrote, dict) else {}
+        out.append(Answer(v, w, kept["theta_g"], kept["e_k"], kept["E_k"], gains_set, invalid))
     return out
 
 
@@ -51,10 +84,12 @@ def _where(pose: list, goal: list) -> str:
     return f"with the robot at ({fmt(x)}, {fmt(y)}) facing {fmt(th)} rad and the goal at {at_goal}"
 
 
-def _error(theta_g: float | None, pose: list, goal: list) -> float:
-    """The wrapped heading error, from the student's theta_g when they gave one (isolates the checks)."""
-    if theta_g is None:
-        theta_g = ref.theta_g(pose[0], pose[1], *goal)
+def _student_error(a: Answer, pose: list, goal: list) -> float:
+    """The heading error the student's code used (it keeps it in e_k_1 for the next call), so that a wrong
+    wrap costs the wrap check only. Without one, the wrapped error from their theta_g (or the true one)."""
+    if a.e_k is not None:
+        return a.e_k
+    theta_g = a.theta_g if a.theta_g is not None else ref.theta_g(pose[0], pose[1], *goal)
     return ref.wrap(theta_g - pose[2])
 
 
@@ -64,19 +99,23 @@ def _close(a: float, b: float) -> bool:
 
 def theta_g(ctx: Context) -> Outcome:
     def case(ctx: Context, x: float, y: float, theta: float, x_g: float, y_g: float) -> None:
-        ((_, _, got),) = _calls(ctx, {"Kp": 1, "Ki": 0, "Kd": 0}, [[x, y, theta]], [[x_g, y_g]], 0.033)
-        expected = ref.theta_g(x, y, x_g, y_g)
+        (a,) = _calls(ctx, {"Kp": 1, "Ki": 0, "Kd": 0}, [[x, y, theta]], [[x_g, y_g]], 0.033)
+        if "theta_g" in a.invalid:
+            raise Mismatch(a.invalid["theta_g"])
+        got, expected = a.theta_g, ref.theta_g(x, y, x_g, y_g)
         if got is None or ref.angle_diff(got, expected) > 1e-6:
             raise Mismatch(
                 f"{_where([x, y, theta], [x_g, y_g])} your theta_g was "
                 f"{'missing' if got is None else fmt(got)}, expected atan2(y_g - y, x_g - x) = "
-                f"{fmt(expected)}"
+                f"{fmt(expected)} (the heading from the robot's position to the goal)"
             )
 
     quadrants = [
         {"x": 0.0, "y": 0.0, "theta": 0.0, "x_g": gx, "y_g": gy}
         for gx, gy in ((1, 1), (-1, 1), (-1, -1), (1, -1), (0, 1), (-1, 0))
     ]
+    # and one away from the origin: a theta_g that ignores the robot's position is right at (0, 0) only
+    quadrants.append({"x": 0.5, "y": -0.5, "theta": 0.0, "x_g": -0.5, "y_g": 0.5})
     strategies = {
         "x": _coord,
         "y": _coord,
@@ -97,12 +136,17 @@ def theta_g(ctx: Context) -> Outcome:
 def error_wrap(ctx: Context) -> Outcome:
     def case(ctx: Context, theta: float, x_g: float, y_g: float) -> None:
         pose, goal = [0.0, 0.0, theta], [x_g, y_g]
-        ((_, w, tg),) = _calls(ctx, {"Kp": 1, "Ki": 0, "Kd": 0}, [pose], [goal], 0.033)
-        expected = _error(tg, pose, goal)
-        if not _close(w, expected):
+        (a,) = _calls(ctx, {"Kp": 1, "Ki": 0, "Kd": 0}, [pose], [goal], 0.033)
+        if "e_k" in a.invalid:
+            raise Mismatch(a.invalid["e_k"])
+        theta_g = a.theta_g if a.theta_g is not None else ref.theta_g(0.0, 0.0, x_g, y_g)
+        expected = ref.wrap(theta_g - theta)
+        got = a.e_k if a.e_k is not None else a.w  # with Kp = 1 alone, w is the error
+        if not _close(got, expected):
             raise Mismatch(
-                f"{_where(pose, goal)} and Kp = 1 (Ki = Kd = 0) your w was {fmt(w)}, expected the "
-                f"error wrapped into [-pi, pi]: {fmt(expected)}"
+                f"{_where(pose, goal)} your heading error e_k was {fmt(got)}, expected theta_g - theta = "
+                f"{fmt(theta_g - theta)} wrapped into [-pi, pi]: {fmt(expected)} "
+                "(atan2(sin(e), cos(e)) wraps any angle)"
             )
 
     examples = [
@@ -120,24 +164,42 @@ def error_wrap(ctx: Context) -> Outcome:
     )
 
 
-def _term(name: str, gain: str, expected_of):
-    """A check of one PID term: only `gain` is non-zero, one call on a fresh controller."""
+def _term(name: str, gain: str, expected_of, formula: str):
+    """A check of one PID term: only `gain` is non-zero, one call on a fresh controller whose memory
+    (E_k, e_k_1) is already set, as after earlier calls. The error is the student's own e_k, so a wrong
+    theta_g or wrap costs their own checks, not this one."""
 
     def case(
-        ctx: Context, x: float, y: float, theta: float, ahead: float, side: float, k: float, dt: float
+        ctx: Context,
+        x: float,
+        y: float,
+        theta: float,
+        ahead: float,
+        side: float,
+        k: float,
+        dt: float,
+        E_k: float,
+        e_k_1: float,
     ) -> None:
         pose, goal = [x, y, theta], [x + ahead, y + side]
         gains = {"Kp": 0, "Ki": 0, "Kd": 0, gain: k}
-        ((v, w, tg),) = _calls(ctx, gains, [pose], [goal], dt)
-        e = _error(tg, pose, goal)
-        expected = expected_of(e, k, dt)
-        if not _close(w, expected):
+        (a,) = _calls(ctx, gains, [pose], [goal], dt, memory=[{"E_k": E_k, "e_k_1": e_k_1}])
+        e = _student_error(a, pose, goal)
+        true_error = ref.wrap(ref.theta_g(x, y, *goal) - theta)
+        if abs(e) < 1e-12 and abs(true_error) > 1e-3:  # e.g. the stub's e_k = 0: nothing to check yet
             raise Mismatch(
-                f"{_where(pose, goal)}, {gain} = {fmt(k)} (other gains 0) and dt = {fmt(dt)} your w "
-                f"was {fmt(w)}, expected {fmt(expected)} ({name} of the error e_k = {fmt(e)})"
+                f"{_where(pose, goal)} your heading error e_k was 0 (the heading to the goal is "
+                f"{fmt(true_error)} rad away), so the {name} term cannot be checked: fill in e_k first"
             )
-        if not _close(v, V):
-            raise Mismatch(f"{_where(pose, goal)} your v was {fmt(v)}, expected inputs.v = {V}")
+        expected = expected_of(e, k, dt, E_k, e_k_1)
+        if not _close(a.w, expected):
+            raise Mismatch(
+                f"{_where(pose, goal)}, {gain} = {fmt(k)} (other gains 0), dt = {fmt(dt)} and the memory "
+                f"of earlier calls E_k = {fmt(E_k)}, e_k_1 = {fmt(e_k_1)}, your w was {fmt(a.w)}, expected "
+                f"{formula} = {fmt(expected)} (with your error e_k = {fmt(e)})"
+            )
+        if not _close(a.v, V):
+            raise Mismatch(f"{_where(pose, goal)} your v was {fmt(a.v)}, expected inputs.v = {V}")
 
     gains = st.floats(0.5, 10.0) if gain != "Kd" else st.floats(0.01, 1.0)
     strategies = {
@@ -148,39 +210,60 @@ def _term(name: str, gain: str, expected_of):
         "side": _side,
         "k": gains,
         "dt": _dts,
+        "E_k": _memory,
+        "e_k_1": _memory,
     }
+    example = {"x": 0.0, "y": 0.0, "theta": 0.0, "ahead": 1.0, "side": 0.5, "k": 1.0, "dt": 0.05,
+               "E_k": 0.3, "e_k_1": -0.2}
 
     def run(ctx: Context) -> Outcome:
-        return run_property(ctx, f"week3.pid.{name}", strategies, case, passed=f"the {name} term is right")
+        return run_property(ctx, f"week3.pid.{name}", strategies, case, examples=[example],
+                            passed=f"the {name} term is right")
 
     run.__name__ = f"pid_{name}"
     return run
 
 
 def memory(ctx: Context) -> Outcome:
-    """Three calls on one controller against three fresh ones: I must accumulate, D must difference."""
+    """Three calls on one controller: each answer must follow from what the controller keeps (E_k and
+    e_k_1, compared with a fresh controller given the same memory), and execute must leave the gains alone."""
 
     def case(ctx: Context, thetas: list, dt: float) -> None:
         poses = [[0.0, 0.0, th] for th in thetas]
         goals = [[1.0, 0.3]] * len(poses)
-        for gain, how in (("Ki", "accumulate"), ("Kd", "difference")):
-            gains = {"Kp": 0, "Ki": 0, "Kd": 0, gain: 1.0}
-            fresh = [w for _, w, _ in _calls(ctx, gains, poses, goals, dt, fresh=True)]
-            kept = [w for _, w, _ in _calls(ctx, gains, poses, goals, dt)]
-            if max(map(abs, fresh)) < 1e-12:
+        gains = {"Kp": 0, "Ki": 1.0, "Kd": 1.0}
+        kept = _calls(ctx, gains, poses, goals, dt)
+        overwrote = {k: v for a in kept for k, v in a.overwrote.items()}
+        if overwrote:
+            words = ", ".join(f"{k} = {fmt(v) if isinstance(v, float) else v}" for k, v in overwrote.items())
+            raise Mismatch(
+                f"execute overwrote {'/'.join(overwrote)} ({words}): set the gains in __init__ (the gains "
+                "block), so they can be tuned and checked; execute must only use them"
+            )
+        if max(abs(a.w) for a in kept) < 1e-12:
+            raise Mismatch(
+                "with Ki = Kd = 1 your w was always 0, so the controller keeps no memory to check "
+                "(are the integral and derivative terms there?)"
+            )
+        carried: list[tuple[float, float]] = []  # (E_k, e_k_1) each call left for the next
+        for a in kept[:-1]:
+            bad = [a.invalid[k] for k in ("E_k", "e_k") if k in a.invalid]
+            if bad:
+                raise Mismatch(bad[0])
+            if a.E_k is None or a.e_k is None:
+                raise Mismatch("your controller kept no E_k or e_k_1 between calls")
+            carried.append((a.E_k, a.e_k))
+        memory = [None] + [{"E_k": e_sum, "e_k_1": e_last} for e_sum, e_last in carried]
+        fresh = _calls(ctx, gains, poses, goals, dt, fresh=True, memory=memory)
+        for n in range(1, len(poses)):
+            if not _close(kept[n].w, fresh[n].w):
+                e_sum, e_last = carried[n - 1]
                 raise Mismatch(
-                    f"with only {gain} = 1 your w was always 0, so the controller keeps no memory "
-                    f"to check (is the {'integral' if gain == 'Ki' else 'derivative'} term there?)"
+                    f"with Ki = Kd = 1, headings {', '.join(fmt(t) for t in thetas)} and dt = {fmt(dt)}, "
+                    f"call {n + 1} on the same controller gave w = {fmt(kept[n].w)}, but a new controller "
+                    f"with the same E_k = {fmt(e_sum)} and e_k_1 = {fmt(e_last)} "
+                    f"gave {fmt(fresh[n].w)}: keep what the next call needs in E_k and e_k_1 only"
                 )
-            for n in range(1, len(poses)):
-                expected = sum(fresh[: n + 1]) if how == "accumulate" else fresh[n] - fresh[n - 1]
-                if not _close(kept[n], expected):
-                    word = "E_k, the error summed so far" if how == "accumulate" else "e_k_1, the last error"
-                    raise Mismatch(
-                        f"with only {gain} = 1, headings {', '.join(fmt(t) for t in thetas)} and "
-                        f"dt = {fmt(dt)}, call {n + 1} on the same controller gave w = {fmt(kept[n])}, "
-                        f"expected {fmt(expected)}: the term must use {word}"
-                    )
 
     strategies = {"thetas": st.lists(_facing, min_size=3, max_size=3), "dt": _dts}
     return run_property(
@@ -209,7 +292,7 @@ PID_CHECKS = [
         "PID: the proportional term",
         "property",
         0.5,
-        _term("proportional", "Kp", lambda e, k, dt: k * e),
+        _term("proportional", "Kp", lambda e, k, dt, E, e1: k * e, "Kp * e_k"),
         NEEDS,
     ),
     Check(
@@ -217,7 +300,7 @@ PID_CHECKS = [
         "PID: the integral term (with dt)",
         "property",
         0.5,
-        _term("integral", "Ki", lambda e, k, dt: k * e * dt),
+        _term("integral", "Ki", lambda e, k, dt, E, e1: k * (E + e * dt), "Ki * (E_k + e_k * dt)"),
         NEEDS,
     ),
     Check(
@@ -225,7 +308,7 @@ PID_CHECKS = [
         "PID: the derivative term (with dt)",
         "property",
         0.5,
-        _term("derivative", "Kd", lambda e, k, dt: k * e / dt),
+        _term("derivative", "Kd", lambda e, k, dt, E, e1: k * (e - e1) / dt, "Kd * (e_k - e_k_1) / dt"),
         NEEDS,
     ),
     Check("week3.pid.memory", "PID: memory carried between calls", "property", 0.5, memory, NEEDS),

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from grader import reference as ref
 from grader import scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
-from grader.checks.answers import fmt, vector
+from grader.checks.answers import WILD, fmt, vector
 from grader.checks.pid import PID_CHECKS
 from grader.properties import run_property
 
@@ -26,6 +26,23 @@ D_STOP = 0.05  # the course's arrival radius, judged on the TRUE position
 ROBOT_D_STOP = 0.02  # the supervisor stops a little inside it, so odometry drift cannot stop it just outside
 SETTLE_LIMIT = 3.0
 OVERSHOOT_LIMIT = 0.10
+REACH_HINT = (
+    "Hint: the robot steers by your theta_g, the wrapped error and the PID terms (their own checks say which "
+    "one is wrong), and ensure_w must keep w; replay the run in the report to see where it goes"
+)
+TUNE_HINT = (
+    "Hint: first make theta_g, the wrapped error and the PID terms pass their own checks; then tune Kp, Ki, "
+    "Kd in GoToGoal.__init__ (settle within 3 s, overshoot at most 10 %)"
+)
+OVERSHOOT_HINT = (
+    "Hint: theta swings past theta_g (or away from it): first make theta_g, the wrapped error and the PID "
+    "terms pass their own checks; then lower Kp or raise Kd in GoToGoal.__init__"
+)
+
+
+def _percent(ratio: float) -> str:
+    """An overshoot as a percentage, or 'wildly off' where the figure would be absurd."""
+    return f"{ratio:.1%}" if ratio <= WILD else f"wildly off: more than {WILD * 100:.0f} %"
 
 
 def _ensure_w(ctx: Context, v: float, w: float) -> tuple[float, float]:
@@ -148,15 +165,16 @@ def reach_goals(hidden: bool):
                 lines.append(f"({goal[0]:g}, {goal[1]:g}) reached in {r.t_goal:.1f} s")
             else:
                 why = r.problem or (
-                    "collided"
+                    f"collided at t = {r.collision['t']:.2f} s"
                     if r.collision
                     else f"not reached in 30 s, {r.metrics['final_distance']:.2f} m away at the end"
                 )
                 lines.append(f"({goal[0]:g}, {goal[1]:g}) {why}")
             runs.append({**r.metrics, "problem": r.problem})
+        missed = reached < len(goals) and not any(r.problem for r in done)
         return Outcome(
             reached / len(goals),
-            "; ".join(lines),
+            "; ".join(lines) + (f". {REACH_HINT}" if missed else ""),
             {"runs": runs, "traces": scenarios.trace_keys(done)},
             status=scenarios.status_of(done),
         )
@@ -183,12 +201,12 @@ def settle_time(ctx: Context) -> Outcome:
     if r.problem:
         return Outcome(0.0, r.problem, m, status=scenarios.status_of([r]))
     if m["settle_time"] is None:
-        return Outcome(0.0, "theta never stayed within 10 % of theta_g (goal (0, -1)); tune Kp, Ki, Kd", m)
+        return Outcome(0.0, f"theta never stayed within 10 % of theta_g (goal (0, -1)). {TUNE_HINT}", m)
     ok = m["settle_time"] <= SETTLE_LIMIT
     return Outcome(
         float(ok),
         f"theta settled within 10 % of theta_g after {m['settle_time']:.2f} s "
-        f"(at most {SETTLE_LIMIT:g} s) on the way to (0, -1)",
+        f"(at most {SETTLE_LIMIT:g} s) on the way to (0, -1)" + ("" if ok else f". {TUNE_HINT}"),
         m,
     )
 
@@ -198,9 +216,8 @@ def overshoot(ctx: Context) -> Outcome:
     if r.problem:
         return Outcome(0.0, r.problem, m, status=scenarios.status_of([r]))
     ok = m["overshoot"] <= OVERSHOOT_LIMIT
-    return Outcome(
-        float(ok), f"overshoot {m['overshoot']:.1%} of theta_g (at most 10 %) on the way to (0, -1)", m
-    )
+    text = f"overshoot {_percent(m['overshoot'])} of theta_g (at most 10 %) on the way to (0, -1)"
+    return Outcome(float(ok), text + ("" if ok else f". {OVERSHOOT_HINT}"), m)
 
 
 def tracking_other_goal(ctx: Context) -> Outcome:
@@ -211,7 +228,8 @@ def tracking_other_goal(ctx: Context) -> Outcome:
     settle, over = m["settle_time"], m["overshoot"]
     ok = settle is not None and settle <= SETTLE_LIMIT and over <= OVERSHOOT_LIMIT
     text = "never settled" if settle is None else f"settled after {settle:.2f} s"
-    return Outcome(float(ok), f"goal ({goal[0]:g}, {goal[1]:g}): {text}, overshoot {over:.1%}", m)
+    text = f"goal ({goal[0]:g}, {goal[1]:g}): {text}, overshoot {_percent(over)}"
+    return Outcome(float(ok), text + ("" if ok else f". {TUNE_HINT}"), m)
 
 
 CHECKS = [

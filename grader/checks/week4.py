@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from grader import reference as ref
 from grader import scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
-from grader.checks.answers import fmt, matrix, vector
+from grader.checks.answers import fmt, matrix, number, vector
 from grader.properties import run_property
 from simiam.world import World, load_world
 
@@ -34,6 +34,11 @@ SECONDS = 60.0
 HIDDEN_SECONDS = 30.0  # each hidden variant was checked for 60 s with the reference solution
 MIN_PATH = 1.0  # "really moving": at least this many metres driven in the run
 POSE = [0.3, -0.2, 0.7]
+COLLISION_HINT = (
+    "Hint: the robot steers along u_ao: the checks of the IR points, the gains, u_ao and theta_ao say which "
+    "part is wrong; if they all pass, tune Kp, Ki, Kd or sensor_gains (replay the run in the report)"
+)
+STILL_HINT = "Hint: AvoidObstacles must keep driving at inputs.v and only steer (w) away from obstacles"
 
 _coord = st.floats(-1.5, 1.5)
 _angle = st.floats(-math.pi, math.pi)
@@ -128,9 +133,15 @@ def _frame_check(frame: str):
     return run
 
 
-def _u_ao(ctx: Context, distances: list) -> tuple[np.ndarray, np.ndarray]:
+def _u_ao(ctx: Context, distances: list, pose: list = POSE) -> tuple[np.ndarray, np.ndarray]:
     """u_ao and the vectors from the robot to the student's own world-frame IR points."""
-    answer = ctx.probe("avoid_obstacles", distances=distances, pose=POSE, v=V)
+    u_ao, vectors, _ = _avoid_once(ctx, distances, pose)
+    return u_ao, vectors
+
+
+def _avoid_once(ctx: Context, distances: list, pose: list) -> tuple[np.ndarray, np.ndarray, dict]:
+    """One AvoidObstacles.execute: u_ao, the vectors to the student's own IR points, and the raw answer."""
+    answer = ctx.probe("avoid_obstacles", distances=distances, pose=pose, v=V)
     if not isinstance(answer, dict):
         raise Mismatch("AvoidObstacles.execute gave no answer")
     where = f"with IR distances {', '.join(fmt(d) for d in distances)}"
@@ -149,7 +160,7 @@ def _u_ao(ctx: Context, distances: list) -> tuple[np.ndarray, np.ndarray]:
             f"{where} your ir_distances_wf",
         )
     )
-    return u_ao, points[:2] - np.array([[POSE[0]], [POSE[1]]])
+    return u_ao, points[:2] - np.array([[pose[0]], [pose[1]]]), answer
 
 
 _GAIN_PROBES = [
@@ -175,7 +186,12 @@ def symmetric_gains(ctx: Context) -> Outcome:
     words = ", ".join(fmt(float(g)) for g in gains)
     if residual > 1e-6 * max(1.0, float(np.max(np.abs(rhs)))):
         return Outcome(
-            0.0, "u_ao is not a weighted sum of the vectors from the robot to the IR points", details
+            0.0,
+            "with six sets of IR readings (all 0.3 m, then each sensor in turn at 0.1 m), no one set of five "
+            "sensor gains makes u_ao the weighted sum of the vectors from the robot to your IR points (the "
+            f"best fixed gains miss u_ao by {fmt(residual)} m): sensor_gains must be fixed numbers, the "
+            "same whatever the sensors read, and u_ao = sum of gain_i * u_i",
+            details,
         )
     if np.max(np.abs(gains)) < 1e-9:
         return Outcome(0.0, "your sensor_gains are all 0, so u_ao is always 0", details)
@@ -191,23 +207,67 @@ def symmetric_gains(ctx: Context) -> Outcome:
 
 
 def points_away(ctx: Context) -> Outcome:
-    """An obstacle close to one sensor turns u_ao away from that sensor's direction."""
-    free, _ = _u_ao(ctx, [0.3] * 5)
-    for i, mount in enumerate(ctx.spec.ir_mounts):
+    """An obstacle close to one sensor turns u_ao away from it: away from the direction of that sensor's
+    IR point as the student's own geometry puts it (a geometry mistake costs the geometry checks only)."""
+    free, vectors = _u_ao(ctx, [0.3] * 5)
+    for i in range(5):
         distances = [0.3] * 5
         distances[i] = 0.06
         u_ao, _ = _u_ao(ctx, distances)
-        heading = POSE[2] + mount[2]
-        towards = float(np.dot(u_ao - free, [math.cos(heading), math.sin(heading)]))
+        direction = vectors[:, i] / max(float(np.linalg.norm(vectors[:, i])), 1e-12)
+        towards = float(np.dot(u_ao - free, direction))
         if towards >= -1e-9:
             return Outcome(
                 0.0,
-                f"with an obstacle 0.06 m in front of sensor {i + 1} (the others reading 0.3) "
-                "u_ao did not turn away from it: each u_i must point from the robot to its IR "
-                "point, weighted by a positive gain",
+                f"with an obstacle 0.06 m in front of sensor {i + 1} (the others reading 0.3 m), u_ao moved "
+                f"{fmt(towards)} m toward that sensor's IR point instead of away from it (u_ao with all "
+                f"sensors at 0.3 m: ({fmt(float(free[0]))}, {fmt(float(free[1]))}), now "
+                f"({fmt(float(u_ao[0]))}, {fmt(float(u_ao[1]))})): weigh each u_i, the vector from the "
+                "robot to IR point i, by a positive gain",
                 {"sensor": i + 1, "toward_obstacle": towards},
             )
     return Outcome(1.0, "an obstacle in front of any sensor turns u_ao away from it")
+
+
+def heading(ctx: Context) -> Outcome:
+    """theta_ao is the direction of the student's own u_ao, and e_k = theta_ao - theta wrapped."""
+
+    def case(ctx: Context, distances: list, theta: float) -> None:
+        pose = [0.3, -0.2, theta]
+        u_ao, _, answer = _avoid_once(ctx, distances, pose)
+        where = (
+            f"with IR distances {', '.join(fmt(d) for d in distances)} and the robot at "
+            f"{_pose_words(*pose)}"
+        )
+        theta_ao = number(answer.get("theta_ao"), f"{where} your theta_ao")
+        e_k = number(answer.get("e_k"), f"{where} your heading error e_k")
+        want = math.atan2(float(u_ao[1]), float(u_ao[0]))
+        if ref.angle_diff(theta_ao, want) > 1e-6:
+            raise Mismatch(
+                f"{where} your u_ao was ({fmt(float(u_ao[0]))}, {fmt(float(u_ao[1]))}) and theta_ao "
+                f"{fmt(theta_ao)}, expected its direction atan2(u_ao[1], u_ao[0]) = {fmt(want)}"
+            )
+        want_e = ref.wrap(theta_ao - theta)
+        if abs(e_k - want_e) > 1e-6:
+            raise Mismatch(
+                f"{where} your theta_ao was {fmt(theta_ao)} and your error e_k {fmt(e_k)}, expected "
+                f"theta_ao - theta = {fmt(theta_ao - theta)} wrapped into [-pi, pi]: {fmt(want_e)}"
+            )
+
+    examples = [
+        {"distances": [0.3, 0.3, 0.1, 0.3, 0.3], "theta": 0.0},
+        {"distances": [0.3, 0.1, 0.3, 0.3, 0.3], "theta": 3.0},
+        {"distances": [0.3, 0.3, 0.3, 0.1, 0.3], "theta": -3.0},
+    ]
+    return run_property(
+        ctx,
+        "week4.avoid.heading",
+        {"distances": st.lists(_distance, min_size=5, max_size=5), "theta": _angle},
+        case,
+        examples=examples,
+        max_examples=15,
+        passed="theta_ao follows u_ao and the error is wrapped",
+    )
 
 
 def _variant(world: World, turn: int, of: int, mirror: bool) -> World:
@@ -241,12 +301,13 @@ def _avoid(
     if r.problem:
         return False, r.problem, details, r
     if r.collision is not None:
-        return False, f"collided at t = {r.collision['t']:.2f} s", details, r
+        return False, f"collided at t = {r.collision['t']:.2f} s. {COLLISION_HINT}", details, r
     if length < MIN_PATH:
         return (
             False,
-            f"drove only {length:.2f} m in {seconds:g} s (at least {MIN_PATH:g} m expected)",
+            f"drove only {length:.2f} m in {seconds:g} s (at least {MIN_PATH:g} m expected). {STILL_HINT}",
             details,
+            r,
         )
     gap = r.metrics.get("min_clearance")
     closest = f", never closer than {gap:.2f} m to an obstacle" if gap is not None else ""
@@ -305,6 +366,14 @@ CHECKS = [
     ),
     Check("week4.avoid.symmetric_gains", "sensor gains are symmetric", "property", 0.5, symmetric_gains, AO),
     Check("week4.avoid.points_away", "u_ao points away from obstacles", "property", 1.0, points_away, AO),
+    Check(
+        "week4.avoid.heading",
+        "theta_ao is the direction of u_ao, the error wrapped",
+        "property",
+        1.0,
+        heading,
+        AO,
+    ),
     Check(
         "week4.avoid.week4_world",
         "60 s in the week-4 world: no collision, really moving",

@@ -86,16 +86,16 @@ def _package(args: argparse.Namespace, course: Path) -> int:
 
     seed = args.seed if args.seed is not None else new_seed()
     if args.platform == "gradescope":
-        from grader.platforms.gradescope import build
+        from grader.platforms import gradescope
 
         if args.out.suffix.lower() != ".zip":
             raise ValueError(f"--out {args.out}: Gradescope takes a .zip")
-        config = build(args.week, args.out, course, seed, args.hidden_visibility)
+        config = gradescope.build(args.week, args.out, course, seed, args.hidden_visibility)
         where = args.out
     else:
-        from grader.platforms.prairielearn import build
+        from grader.platforms import prairielearn
 
-        config = build(args.week, args.out, course, seed, image=args.image, timeout=args.timeout)
+        config = prairielearn.build(args.week, args.out, course, seed, image=args.image, timeout=args.timeout)
         where = f"{args.out}/ (question/ for the course repository, image/ for docker build)"
     print(f"week {args.week} for {args.platform}: {where}")
     print(f"  {config['checks']} checks, {config['hidden_checks']} hidden, "

@@ -89,7 +89,7 @@ def summary_html(result: dict, config: dict) -> str:
         lines.append(f"Your submission could not be graded: {esc(cap(result.get('message'), 2000))}")
     hidden = config.get("hidden_checks", 0)
     if hidden:
-        when = _WHEN.get(config.get("hidden_visibility"), "later")
+        when = _WHEN.get(str(config.get("hidden_visibility")), "later")
         lines.append(f"{hidden} of the checks are hidden (other goals, start poses or worlds); "
                      f"you see their results {when}.")
     for note in (result.get("notices") or [])[:20]:

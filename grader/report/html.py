@@ -212,7 +212,7 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
 
 def _check_view(check: dict, traces: dict, replays: str, hrefs: dict[str, str], shown: set[str],
                 max_rows: int = REPLAY_ROWS) -> dict:
-    details = check.get("details") if isinstance(check.get("details"), dict) else {}
+    details = d if isinstance(d := check.get("details"), dict) else {}
     runs = _runs(details)
     listed = {"runs", "counterexample", "replay", "traces", "stdout", "stderr", "case"} | set(METRICS)
     extra = {k: v for k, v in details.items() if k not in listed}
@@ -250,8 +250,8 @@ def _summary(result: dict, checks: list[dict]) -> dict:
         note = (f"{len(checks)} visible check{'s' if len(checks) != 1 else ''} ran here; "
                 f"{not_run} hidden check{'s' if not_run != 1 else ''} "
                 "(other goals, other worlds, drawn per seed) run at official grading.")
-    problems = result.get("problems") if isinstance(result.get("problems"), dict) else {}
-    notices = result.get("notices") if isinstance(result.get("notices"), list) else []
+    problems = p if isinstance(p := result.get("problems"), dict) else {}
+    notices = n if isinstance(n := result.get("notices"), list) else []
     return {"week": result.get("week"), "score": result.get("score"), "max_score": result.get("max_score"),
             "status": str(result.get("status", "")), "message": str(result.get("message", "") or ""),
             "seed": result.get("seed"), "grader_version": str(result.get("grader_version", "") or ""),

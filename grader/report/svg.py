@@ -11,6 +11,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from html import escape
+from typing import TypeGuard
 
 from markupsafe import Markup
 
@@ -25,7 +26,7 @@ def _n(v: float) -> str:
     return "0" if s in ("-0", "") else s
 
 
-def _finite(v) -> bool:
+def _finite(v) -> TypeGuard[float]:
     return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
 
 
@@ -133,7 +134,7 @@ class Chart:
             for d in _paths(s, px, py):
                 dash = f' stroke-dasharray="{s.dash}"' if s.dash else ""
                 out.append(f'<path d="{d}" fill="none" stroke="{s.color}" stroke-width="{s.width}"{dash}/>')
-        lx = ml + 6
+        lx: float = ml + 6
         for s in self.series:  # legend along the bottom
             dash = f' stroke-dasharray="{s.dash}"' if s.dash else ""
             out.append(f'<line x1="{lx}" x2="{lx + 16}" y1="{h - 7}" y2="{h - 7}" stroke="{s.color}" '
@@ -147,7 +148,9 @@ class Chart:
 
 
 def _paths(s: Series, px, py) -> list[str]:
-    paths, cur, prev = [], [], None
+    paths: list[str] = []
+    cur: list[str] = []
+    prev = None
     for x, y in _downsample(s.xs, s.ys):
         if y is None or not _finite(x) or (s.wrap and prev is not None and abs(y - prev) > math.pi):
             if len(cur) > 1:
@@ -240,8 +243,8 @@ def trajectory_svg(trace: dict, size: int = 360) -> Markup:
     if xs and _finite(xs[-1]) and _finite(ys[-1]):
         out.append(f'<circle cx="{_n(sx(xs[-1]))}" cy="{_n(sy(ys[-1]))}" r="3.5" fill="{BLUE}">'
                    f'<title>end</title></circle>')
-    col = trace.get("collision")
-    pose = col.get("pose") if isinstance(col, dict) else None
+    col = c if isinstance(c := trace.get("collision"), dict) else {}
+    pose = col.get("pose")
     if isinstance(pose, list) and len(pose) >= 2 and all(_finite(v) for v in pose[:2]):
         x, y = sx(pose[0]), sy(pose[1])
         t = col.get("t")

@@ -17,15 +17,17 @@ class SandboxError(Exception):
 class StudentError(SandboxError):
     """The student's code raised (or returned something that cannot be sent back).
 
-    `file` and `line` point inside the submission when the failure happened there.
+    `file` and `line` point inside the submission when the failure happened there; `frames` is the
+    traceback through the submission's files ({"file", "line", "function", "code"}, innermost last).
     """
 
     def __init__(self, message: str, type_name: str = "Exception", file: str | None = None,
-                 line: int | None = None) -> None:
+                 line: int | None = None, frames: list[dict] | None = None) -> None:
         super().__init__(message)
         self.type_name = type_name
         self.file = file
         self.line = line
+        self.frames = list(frames or [])
 
     def __str__(self) -> str:
         where = f"{self.file}:{self.line}: " if self.line else ""

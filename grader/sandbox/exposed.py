@@ -54,6 +54,9 @@ WORKER = "grader/sandbox/worker.py"
 def source_of(relative: str) -> Path:
     """Where an exposed file lives in this installation (checkout or site-packages)."""
     top = {"simiam": simiam, "grader": grader}[relative.split("/", 1)[0]]
+    if top.__file__ is None:  # a namespace package: some other folder named simiam or grader won
+        raise RuntimeError(f"{top.__name__} is imported from {list(top.__path__)}, not from the installed "
+                           "package: run from a folder without a stray one")
     return Path(top.__file__).resolve().parent.parent / relative
 
 

@@ -31,7 +31,7 @@ DUMP_WAIT_SECONDS = 0.25   # how long a timed-out worker gets to write its stack
 DUMP_IDLE_SECONDS = 0.02
 MAX_DUMP_BYTES = 64 * 1024
 
-_SIGNAL_MEANING = {
+_SIGNAL_MEANING: dict[int, str] = {
     signal.SIGXCPU: "it used up its CPU time limit",
     signal.SIGXFSZ: "it wrote a file larger than the limit",
     signal.SIGKILL: "it was killed (time or memory limit)",

@@ -63,7 +63,7 @@ def program(machine: str | None = None) -> bytes | None:
         return None
     audit_arch, foreign, nr = arch
     # (code, true-label, false-label, k); labels are resolved to relative jumps below
-    code: list[tuple[int, str | None, str | None, int]] = [
+    code: list[tuple[int | str, str | None, str | None, int]] = [
         (_LD_W_ABS, None, None, 4),                      # A = arch
         (_JEQ_K, "native", "enosys", audit_arch),
         ("native", None, None, 0),
@@ -92,11 +92,11 @@ def program(machine: str | None = None) -> bytes | None:
     ]
     labels: dict[str, int] = {}
     insns: list[tuple[int, str | None, str | None, int]] = []
-    for item in code:
-        if isinstance(item[0], str):
-            labels[item[0]] = len(insns)
+    for op, jt, jf, k in code:
+        if isinstance(op, str):
+            labels[op] = len(insns)
         else:
-            insns.append(item)  # type: ignore[arg-type]
+            insns.append((op, jt, jf, k))
     out = []
     for i, (op, jt, jf, k) in enumerate(insns):
         # a jump lands on (its index + 1 + offset)

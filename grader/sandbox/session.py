@@ -223,15 +223,27 @@ def _student_error(error: Any) -> StudentError:
     """Rebuild a student error from the worker's (untrusted) description, keeping only sane fields."""
     if not isinstance(error, dict):
         return StudentError("the worker reported an error it could not describe", "Error")
-    kind = error.get("type") if isinstance(error.get("type"), str) else "Error"
-    message = error.get("message") if isinstance(error.get("message"), str) else ""
+    kind = str(error.get("type")) if isinstance(error.get("type"), str) else "Error"
+    message = str(error.get("message")) if isinstance(error.get("message"), str) else ""
     file = error.get("file") if isinstance(error.get("file"), str) else None
     line = error.get("line") if type(error.get("line")) is int else None
     if kind == "NotJSON":
         message = f"your code returned {message}, which cannot be sent to the grader " \
                   "(only numbers, strings, lists and dicts can)"
         kind = ""
-    return StudentError(message[:1000], kind[:100], file, line)
+    raw = error.get("frames")
+    frames = [_frame(f) for f in (raw if isinstance(raw, list) else [])[-20:]]
+    return StudentError(message[:1000], kind[:100], file, line, frames=[f for f in frames if f])
+
+
+def _frame(f: Any) -> dict | None:
+    """One frame of the worker's (untrusted) traceback: file, line, function and code, or None."""
+    if not isinstance(f, dict) or not isinstance(f.get("file"), str) or type(f.get("line")) is not int:
+        return None
+    function, code = f.get("function"), f.get("code")
+    return {"file": f["file"][:100], "line": f["line"],
+            "function": function[:100] if isinstance(function, str) else "",
+            "code": code[:200] if isinstance(code, str) else ""}
 
 
 def _check_load(value: Any) -> dict:

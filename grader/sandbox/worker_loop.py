@@ -88,16 +88,20 @@ class _Worker:
     def describe(self, exc: BaseException) -> dict:
         file, line = None, None
         folder = str(self.folder.resolve())
+        frames = []  # the traceback through the student's files only, for the replay of a failing case
         for frame in traceback.extract_tb(exc.__traceback__):
             if os.path.dirname(os.path.abspath(frame.filename)) == folder:
                 file, line = os.path.basename(frame.filename), frame.lineno
+                frames.append({"file": file[:100], "line": line, "function": frame.name[:100],
+                               "code": (frame.line or "")[:200]})
         try:
             message = str(exc)
         except BaseException:  # noqa: BLE001 - a student __str__ may raise anything
             message = ""
         if isinstance(exc, SystemExit):
             message = f"your code called sys.exit({message})"
-        return {"type": type(exc).__name__[:100], "message": message[:1000], "file": file, "line": line}
+        return {"type": type(exc).__name__[:100], "message": message[:1000], "file": file, "line": line,
+                "frames": frames[-20:]}
 
 
 def _probe_names(module: Any) -> frozenset[str]:

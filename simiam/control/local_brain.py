@@ -95,7 +95,8 @@ def _vector(u, n: int) -> list[float] | None:
         values = [_maybe(u[i]) for i in range(n)]
     except (TypeError, IndexError, KeyError):
         return None
-    return None if None in values else values
+    numbers = [v for v in values if v is not None]
+    return numbers if len(numbers) == n else None
 
 
 def _points(p) -> list[list[float]] | None:
@@ -104,4 +105,5 @@ def _points(p) -> list[list[float]] | None:
         rows = [[_maybe(p[r][i]) for i in range(5)] for r in range(2)]
     except (TypeError, IndexError, KeyError):
         return None
-    return None if any(None in row for row in rows) else rows
+    numbers = [[v for v in row if v is not None] for row in rows]
+    return numbers if all(len(row) == 5 for row in numbers) else None

@@ -81,6 +81,8 @@ class Supervisor:
 
     def execute_controller(self, inputs: Inputs, dt: float) -> tuple[float, float]:
         """Run the current controller and return its (v, w); remembered in `self.outputs` for plots."""
+        if self.current_controller is None:
+            raise ValueError("no controller is running: call self.switch_to_state(name) in __init__ first")
         v, w = self.current_controller.execute(self.robot, self.state_estimate, inputs, dt)
         self.outputs = (v, w)
         return v, w

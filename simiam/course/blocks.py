@@ -166,7 +166,7 @@ def _enclosing(tree: ast.Module, line: int) -> str:
 
 
 def _child_statements(node: ast.AST) -> list:
-    out = []
+    out: list[ast.AST] = []
     for name in ("body", "orelse", "finalbody", "handlers", "cases"):
         for child in getattr(node, name, None) or []:
             # match_case has no line numbers of its own: look straight into its body

@@ -121,9 +121,9 @@ def _new_package(folder: Path) -> str:
 def _error_from_exception(exc: BaseException, folder: Path, default_file: str, package: str) -> LoadError:
     """Say where in the student's folder an import failed and why."""
     if isinstance(exc, SyntaxError):
-        file = Path(exc.filename).name if exc.filename else default_file
+        name = Path(exc.filename).name if exc.filename else default_file
         kind = "indentation error" if isinstance(exc, IndentationError) else "syntax error"
-        return LoadError(file, exc.lineno, f"{kind}: {exc.msg}")
+        return LoadError(name, exc.lineno, f"{kind}: {exc.msg}")
     file, line = locate_in_folder(exc, folder)
     text = str(exc).replace(f"{package}.", "")  # say "go_to_goal", not "simiam_submission_7.go_to_goal"
     message = f"{type(exc).__name__}: {text}" if text else type(exc).__name__

@@ -188,15 +188,19 @@ def _carry(mig: Migration, name: str, text: str, blocks: list[Block], t: Block, 
     spec = placeholder_for(name, t.scope, t.occurrence)
 
     def keep(why: str) -> None:
+        """Record that the block stays as it is here (no body to write)."""
         mig.moves.append(BlockMove(label, t.describe(), False, why, t.start_line))
 
     if spec is None or spec.week == week:
-        return keep("new this week: yours to write")
+        keep("new this week: yours to write")
+        return None
     if week in spec.revised_in:
-        return keep(f"shipped version kept: {spec.revised_why}")
+        keep(f"shipped version kept: {spec.revised_why}")
+        return None
     last_shipped = {(r[0], r[1]): r[4] for r in SHIPPED[week - 1].get(name, [])}
     if t.key not in last_shipped:
-        return keep(f"not in week {week - 1}")
+        keep(f"not in week {week - 1}")
+        return None
     src = _source_blocks(mig, name, cache)
     if src is None:
         return None  # the errors are listed already
@@ -208,13 +212,17 @@ def _carry(mig: Migration, name: str, text: str, blocks: list[Block], t: Block, 
     theirs, here = fingerprint(s.body), fingerprint(t.body)
     shipped_here = {(r[0], r[1]): r[4] for r in SHIPPED[week][name]}[t.key]
     if theirs == fingerprint(spec.body("")):
-        return keep(f"you had not filled it in week {week - 1} (still the placeholder); shipped version kept")
+        keep(f"you had not filled it in week {week - 1} (still the placeholder); shipped version kept")
+        return None
     if theirs == last_shipped[t.key]:
-        return keep(f"same as the course shipped in week {week - 1}; this week's version kept")
+        keep(f"same as the course shipped in week {week - 1}; this week's version kept")
+        return None
     if theirs == here:
         if here == shipped_here:
-            return keep("your code is the same as this week's shipped code; nothing to move")
-        return keep("already your code (migrated before)")
+            keep("your code is the same as this week's shipped code; nothing to move")
+            return None
+        keep("already your code (migrated before)")
+        return None
     if here != shipped_here:
         mig.errors.append(
             BlockError(
@@ -239,13 +247,13 @@ def write_atomically(folder: Path, texts: dict[str, str]) -> list[str]:
     try:
         for name, text in texts.items():
             dest = folder / name
-            fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=".migrate", dir=folder)
-            temps.append((name, Path(tmp)))
+            fd, tmp_name = tempfile.mkstemp(prefix=f".{name}.", suffix=".migrate", dir=folder)
+            temps.append((name, Path(tmp_name)))
             with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
                 f.write(text)
                 f.flush()
                 os.fsync(f.fileno())
-            os.chmod(tmp, os.stat(dest).st_mode & 0o777)
+            os.chmod(tmp_name, os.stat(dest).st_mode & 0o777)
         done: list[str] = []
         for name, tmp in temps:
             try:

@@ -53,7 +53,7 @@ SHIPPED: dict[int, dict[str, list[tuple]]] = {
             ("GoToGoal.execute", 3, 3, 57, "c319d9d978c7ce89"),
         ],
         "qb_supervisor.py": [
-            ("QBSupervisor.update_odometry", 1, 2, 126, "3a9e7d085bc8639e"),
+            ("QBSupervisor.update_odometry", 1, 2, 131, "3a9e7d085bc8639e"),
         ],
         "quickbot.py": [
             ("get_ir_distances", 1, 2, 19, "cdd2f0f97318d5ef"),

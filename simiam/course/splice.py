@@ -270,7 +270,7 @@ def outside_edits(
 
 
 def _outside_lines(text: str, blocks: list[Block]) -> list[tuple[int, str]]:
-    inside = set()
+    inside: set[int] = set()
     for b in blocks:
         inside.update(range(b.start_line + 1, b.end_line))
     out = []

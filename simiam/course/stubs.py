@@ -95,9 +95,9 @@ def generate(solutions: Path = ROOT / "solutions") -> Generated:
             solution = src.read_text(encoding="utf-8")
             try:
                 text, rows = stub_text(week, solution, src.name)
-                for folder in STUB_FOLDERS:
-                    every_block = folder != ASSIGNMENTS
-                    files[f"{folder.format(week=week)}/{src.name}"] = (
+                for pattern in STUB_FOLDERS:
+                    every_block = pattern != ASSIGNMENTS
+                    files[f"{pattern.format(week=week)}/{src.name}"] = (
                         stub_text(week, solution, src.name, every_block=True)[0] if every_block else text
                     )
             except BlockError as e:

@@ -42,7 +42,7 @@ def crossing(a: Edge, b: Edge) -> float | None:
     return None
 
 
-def polygon_edges(points: Sequence[Sequence[float]]) -> list[Edge]:
+def polygon_edges(points: Sequence[Sequence[float]] | np.ndarray) -> list[Edge]:
     """The closed polygon's edges: vertex k to vertex k+1, the last back to the first."""
     n = len(points)
     return [(float(points[k][0]), float(points[k][1]), float(points[(k + 1) % n][0]),
@@ -53,13 +53,13 @@ class ObstacleEdges:
     """The obstacles' edges, precomputed for fast culled tests: per polygon a padded bounding box and, per
     edge, (x3, y3, x43, y43, xmin, xmax, ymin, ymax) with the edge's own padded box."""
 
-    def __init__(self, obstacles: Sequence[np.ndarray]) -> None:
+    def __init__(self, obstacles: Sequence[np.ndarray | Sequence[Sequence[float]]]) -> None:
         self.polygons: list[PolygonBox] = []
         self.edges: list[list[Edge]] = []
         for poly in obstacles:
             edges = polygon_edges(poly)
             self.edges.append(edges)
-            table = []
+            table: list[tuple[float, ...]] = []
             for x3, y3, x4, y4 in edges:
                 table.append((x3, y3, x4 - x3, y4 - y3, min(x3, x4) - CULL_PAD, max(x3, x4) + CULL_PAD,
                               min(y3, y4) - CULL_PAD, max(y3, y4) + CULL_PAD))

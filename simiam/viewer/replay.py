@@ -53,7 +53,7 @@ def _split(rows: list, n: int, width: int, digits: int) -> list[list]:
         row = rows[k] if k < len(rows) else None
         for j in range(width):
             ok = isinstance(row, (list, tuple)) and len(row) > j
-            out[j].append(_num(row[j], digits) if ok else None)
+            out[j].append(_num(row[j], digits) if ok and row is not None else None)
     return out
 
 
@@ -119,8 +119,8 @@ def pack_trace(trace: dict) -> dict:
     for name in ("x_est", "y_est", "theta_est", "vel_r", "vel_l"):
         cols.setdefault(name, [None] * n)
     if isinstance(steps.get("ir_range"), list):
-        for k, c in enumerate(_split(steps["ir_range"], n, 5, 4)):
-            cols[f"ir{k}"] = c
+        for k, column in enumerate(_split(steps["ir_range"], n, 5, 4)):
+            cols[f"ir{k}"] = column
     if isinstance(steps.get("u_ao"), list) and any(u is not None for u in steps["u_ao"]):
         cols["ux"], cols["uy"] = _split(steps["u_ao"], n, 2, 4)
     points = steps.get("ir_points_wf")

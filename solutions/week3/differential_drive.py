@@ -26,6 +26,8 @@ def diff_to_uni(robot, vel_r, vel_l):
     """The (v, w) the robot moves with when its wheels turn at (vel_r, vel_l) rad/s."""
     R = robot.wheel_radius
     L = robot.wheel_base_length
+    # any real number: a numpy bool, say, cannot be subtracted
+    vel_r, vel_l = float(vel_r), float(vel_l)
 
     v = R / 2 * (vel_r + vel_l)
     w = R / L * (vel_r - vel_l)

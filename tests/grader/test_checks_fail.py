@@ -3,6 +3,7 @@ checks aimed at its mistake while alternative correct versions keep full marks."
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -21,7 +22,34 @@ EXPECTED_FAILURES = {
     "week3_no_wrap": {"week3.go_to_goal.error_wrap"},
     "week3_integral_no_dt": {"week3.pid.integral"},
     "week3_derivative_flipped": {"week3.pid.derivative"},
-    "week3_state_not_kept": {"week3.pid.memory"},
+    # the terms are probed with the memory (E_k, e_k_1) already set: ignoring it is a wrong I and D term
+    "week3_state_not_kept": {"week3.pid.integral", "week3.pid.derivative"},
+    "week3_integral_dt_again": {"week3.pid.integral"},
+    "week3_single_wrap": {"week3.go_to_goal.error_wrap"},
+    "week3_gains_in_execute": {"week3.pid.memory"},
+    # P, I and D use the student's own (wrongly wrapped) error: only the wrap check and the runs fail
+    "week3_wrap_modulo": {"week3.go_to_goal.error_wrap", "week3.go_to_goal.reach_goals",
+                          "week3.pid.overshoot"},
+    # these robots really miss goals or swing: the scenario checks measure that, not the arithmetic again
+    "week3_derivative_from_sum": {"week3.pid.derivative", "week3.go_to_goal.reach_goals",
+                                  "week3.pid.settle_time", "week3.pid.overshoot"},
+    "week3_theta_g_from_origin": {"week3.go_to_goal.theta_g", "week3.go_to_goal.reach_goals",
+                                  "week3.pid.overshoot"},
+    "week3_ensure_w_wrong_wheel": {
+        "week3.ensure_w.keeps_w", "week3.ensure_w.max_vel", "week3.ensure_w.gives_up_v",
+        "week3.go_to_goal.reach_goals", "week3.pid.settle_time", "week3.pid.overshoot",
+    },
+    "week2_odometry_over_L": {"week2.odometry.distance", "week2.odometry.course_test"},
+    "week2_half_turn": {"week2.uni_to_diff.round_trip", "week2.go_to_angle.reaches_theta_d"},
+    "week2_ir_no_divider": {"week2.ir.table", "week2.ir.simulator"},
+    "week4_theta_ao_swapped": {"week4.avoid.heading", "week4.avoid.week4_world"},
+    "week4_ao_error_not_wrapped": {"week4.avoid.heading", "week4.avoid.week4_world"},
+    "week4_ao_error_flipped": {"week4.avoid.heading", "week4.avoid.week4_world"},
+    # points_away follows the student's own IR points: a geometry mistake costs the geometry check
+    "week4_mount_angle_ignored": {"week4.sensor_geometry.robot_frame", "week4.avoid.week4_world"},
+    "week4_gains_from_readings": {"week4.avoid.symmetric_gains"},
+    "week4_stops_near_walls": {"week4.avoid.week4_world"},
+    "good_week4_numpy_w": set(),
     # the course's overshoot takes |r - y| at the extreme sample, so a slow approach counts too
     "week3_weak_gains": {"week3.pid.settle_time", "week3.pid.overshoot"},
     "week3_ensure_w_clamps": {"week3.ensure_w.keeps_w", "week3.ensure_w.gives_up_v"},
@@ -39,6 +67,23 @@ def _failed(result: dict) -> set[str]:
     return {c["id"] for c in result["checks"] if c["status"] != "passed"}
 
 
+# what the message of a lost check must say (the right reason, in words a student can act on)
+MESSAGES = {
+    "week3_integral_dt_again": {"week3.pid.integral": "Ki * (E_k + e_k * dt)"},
+    "week3_derivative_from_sum": {"week3.pid.derivative": "Kd * (e_k - e_k_1) / dt"},
+    "week3_gains_in_execute": {"week3.pid.memory": "execute overwrote Kp/Ki/Kd"},
+    "week3_single_wrap": {"week3.go_to_goal.error_wrap": "wrapped into [-pi, pi]"},
+    "week3_theta_g_from_origin": {"week3.go_to_goal.theta_g": "from the robot's position"},
+    "week2_ir_no_divider": {"week2.ir.table": "wildly off (-8.886e+13 m)",
+                            "week2.ir.simulator": "wildly off (-8.886e+13 m)"},
+    "week2_half_turn": {"week2.go_to_angle.reaches_theta_d": "ended 0.032 rad away"},
+    "week4_theta_ao_swapped": {"week4.avoid.heading": "atan2(u_ao[1], u_ao[0])"},
+    "week4_ao_error_not_wrapped": {"week4.avoid.heading": "wrapped into [-pi, pi]"},
+    "week4_gains_from_readings": {"week4.avoid.symmetric_gains": "sensor_gains must be fixed numbers"},
+    "week4_stops_near_walls": {"week4.avoid.week4_world": "drove only 0.00 m"},
+}
+
+
 @pytest.mark.parametrize("name", sorted(EXPECTED_FAILURES))
 def test_wrong_version_loses_exactly_its_checks(name: str, tmp_path: Path) -> None:
     result = grade_submission(week_of(name), build(name, tmp_path), seed=2014)
@@ -46,6 +91,18 @@ def test_wrong_version_loses_exactly_its_checks(name: str, tmp_path: Path) -> No
     assert _failed(result) == EXPECTED_FAILURES[name]
     lost = {c["id"] for c in result["checks"] if c["points"] < c["max_points"]}
     assert lost == EXPECTED_FAILURES[name]
+    checks = {c["id"]: c for c in result["checks"]}
+    for check_id, words in MESSAGES.get(name, {}).items():
+        assert words in checks[check_id]["message"], checks[check_id]["message"]
+    for c in checks.values():
+        if c["status"] == "passed":
+            continue
+        assert c["status"] == "failed", c  # never an error: a wrong answer is a failure with a reason
+        # numbers students paste back into Python use an ASCII minus; no absurd percentages
+        figures = c["message"].replace("more than 1000 %", "")  # what 'wildly off' says instead
+        assert "\u2212" not in c["message"] and not re.search(r"\d{4,}(\.\d+)? ?%", figures)
+        if c["kind"] == "scenario":
+            assert "Hint:" in c["message"], c["message"]
 
 
 @pytest.mark.parametrize("week", [1, 2, 3, 4])

@@ -57,3 +57,15 @@ def test_hidden_checks_say_when_the_hidden_set_is_missing(tmp_path: Path, monkey
                               only="week4.avoid.other_starts")
     check = result["checks"][0]
     assert check["status"] == "error" and "hidden set is not here" in check["message"]
+
+
+def test_overshoot_wraps_the_angle_difference() -> None:
+    """A goal bearing just below pi: the heading reaches it from the other side of +-pi. Unwrapped, the
+    heading 3.1 at the extreme sample against a bearing of -3.09 read as 200 % overshoot."""
+    goal = (-1.0, 0.0)
+    trace = _trace([0.0, 1.0, 2.0, 3.0, 3.1])
+    trace.steps["y"] = [-0.05] * 4 + [0.05]  # the robot drifts across the line to the goal
+    settle, overshoot = settle_and_overshoot(trace, goal)
+    bearing = math.atan2(-0.05, -1.0)
+    assert overshoot == abs(math.atan2(math.sin(bearing - 3.1), math.cos(bearing - 3.1))) / abs(bearing)
+    assert overshoot < 0.05

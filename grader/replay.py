@@ -1,0 +1,135 @@
+"""What `grade weekN --check ID --case ...` shows besides the verdict, to debug one failing case.
+
+The traceback of the student's own code (only frames in their files), what their code printed, and a
+short Python snippet that calls their function with exactly the failing inputs, to paste into a Python
+prompt or a file next to their folder. The snippet mirrors what the probe did in the worker
+(grader/probes.py) with the public simiam API a student has installed.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from typing import Any, TextIO
+
+from grader.sandbox.errors import StudentError
+
+_HEAD = """from simiam.control import Pose2D, RobotView
+from simiam.control.controller import Inputs
+from simiam.course.loader import load_submission
+from simiam.course.weeks import week_config
+
+sub = load_submission({folder!r}, {week})
+robot = RobotView(week_config({week}).spec, sub)
+"""
+
+
+def traceback_text(exc: StudentError) -> str:
+    """The traceback through the student's files, as Python prints one (innermost call last)."""
+    lines = ["Traceback (your code, most recent call last):"]
+    for f in exc.frames:
+        lines.append(f'  File "{f["file"]}", line {f["line"]}, in {f["function"]}')
+        if f["code"]:
+            lines.append(f"    {f['code']}")
+    lines.append(f"{exc.type_name}: {exc.message}" if exc.type_name else exc.message)
+    return "\n".join(lines)
+
+
+def _value(x: Any) -> str:
+    return json.dumps(x)
+
+
+def _body(name: str, args: dict[str, Any]) -> str | None:
+    """The lines after _HEAD that repeat probe `name` with `args` (None for a probe it does not know)."""
+    if name == "uni_to_diff":
+        return f"print(sub.module('differential_drive').uni_to_diff(robot, {args['v']!r}, {args['w']!r}))\n"
+    if name == "ensure_w":
+        return (
+            "sup = sub.module('qb_supervisor').QBSupervisor()\n"
+            "sup.attach_robot(robot, Pose2D(0.0, 0.0, 0.0))\n"
+            f"print(sup.ensure_w(robot, {args['v']!r}, {args['w']!r}))\n"
+        )
+    if name == "odometry":
+        return (
+            "sup = sub.module('qb_supervisor').QBSupervisor()\n"
+            f"sup.attach_robot(robot, Pose2D(*{_value(args.get('start', [0.0, 0.0, 0.0]))}))\n"
+            f"for right, left in {_value(args['ticks'])}:  # cumulative encoder ticks\n"
+            "    robot.encoders[0].ticks, robot.encoders[1].ticks = right, left\n"
+            "    sup.update_odometry()\n"
+            "    print(sup.state_estimate.unpack())\n"
+        )
+    if name == "ir_distances":
+        return (
+            f"for sensor, raw in zip(robot.ir_array, {_value(args['raw'])}):\n"
+            "    sensor._raw = raw  # what the IR sensor reads\n"
+            "print(robot.get_ir_distances())\n"
+        )
+    if name == "go_to_goal":
+        lines = []
+        for k, call in enumerate(args["calls"]):
+            if k == 0 or args.get("fresh"):
+                lines.append("ctrl = sub.module('go_to_goal').GoToGoal()")
+                lines += [f"ctrl.{g} = {v!r}" for g, v in args["gains"].items()]
+            lines += [f"ctrl.{m} = {v!r}" for m, v in (call.get("memory") or {}).items()]
+            x_g, y_g = call["goal"]
+            lines.append(
+                f"print(ctrl.execute(robot, Pose2D(*{_value(call['pose'])}), "
+                f"Inputs(v={call['v']!r}, x_g={x_g!r}, y_g={y_g!r}, theta_d=0.0), {call['dt']!r}))"
+            )
+        return "\n".join(lines) + "\n"
+    if name == "transformation_matrix":
+        return (
+            "ctrl = sub.module('avoid_obstacles').AvoidObstacles()\n"
+            f"print(ctrl.get_transformation_matrix({args['x']!r}, {args['y']!r}, {args['theta']!r}))\n"
+        )
+    if name == "sensor_geometry":
+        return (
+            "ctrl = sub.module('avoid_obstacles').AvoidObstacles()\n"
+            f"print(ctrl.apply_sensor_geometry(robot, {_value(args['distances'])}, "
+            f"Pose2D(*{_value(args['pose'])})))\n"
+        )
+    if name == "avoid_obstacles":
+        return (
+            "ctrl = sub.module('avoid_obstacles').AvoidObstacles()\n"
+            f"robot.get_ir_distances = lambda: {_value(args['distances'])}\n"
+            f"print(ctrl.execute(robot, Pose2D(*{_value(args['pose'])}), "
+            f"Inputs(v={args.get('v', 0.2)!r}, x_g=0.0, y_g=0.0, theta_d=0.0), {args.get('dt', 0.033)!r}))\n"
+            "print('u_ao =', ctrl.u_ao)\n"
+        )
+    return None
+
+
+def snippet(folder: str, probe: tuple[str, dict[str, Any]] | None) -> str | None:
+    """Python that calls the student's function as the last probe did, or None."""
+    if probe is None:
+        return None
+    name, args = probe
+    args = dict(args)
+    week = args.pop("week", None)
+    try:
+        body = _body(name, args)
+    except (KeyError, TypeError, ValueError):  # a probe called in a way this module does not know
+        return None
+    return None if body is None or week is None else _HEAD.format(folder=folder, week=week) + body
+
+
+def terminal_safe(text: str) -> str:
+    """Student-controlled text for a terminal: control characters (escape sequences that could recolour,
+    move the cursor or retitle the window) are shown as \\xNN instead of being sent."""
+    return "".join(ch if ch in "\n\t" or ch.isprintable() else f"\\x{ord(ch):02x}" for ch in text)
+
+
+def print_replay(result: dict, out: TextIO | None = None) -> None:
+    """After a replayed case: what the student's code printed, its traceback and the snippet."""
+    out = out or sys.stdout
+    printed = terminal_safe(str(result.get("student_output") or "").strip())
+    if printed:
+        print("\nyour code printed:", file=out)
+        print("\n".join("  | " + line for line in printed.splitlines()), file=out)
+    for c in result.get("checks", []):
+        details = c.get("details") or {}
+        if details.get("traceback"):
+            print(f"\n{terminal_safe(str(details['traceback']))}", file=out)
+        if details.get("snippet"):
+            print("\nto try this case yourself, run this Python next to your folder:\n", file=out)
+            print(details["snippet"], file=out)

@@ -1,0 +1,57 @@
+"""A wall-clock limit on one step of the student's code in `simiam run` (in this process, main thread).
+
+SIGALRM raises StepTimeout inside whatever the student's code is doing, so an endless loop stops with a
+traceback; the alarm repeats every half second until the step ends, in case their code catches the first
+one. `stuck_at` reads from that traceback where in their files the code was running, in the words `grade`
+uses ("go_to_goal.py:52 in GoToGoal.execute").
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+
+class StepTimeout(BaseException):
+    """A step of the student's code ran past its limit (a BaseException: `except Exception` in student
+    code cannot swallow it)."""
+
+
+def _raise(_signum, _frame) -> None:
+    raise StepTimeout()
+
+
+@contextmanager
+def step_limit(seconds: float) -> Iterator[None]:
+    """Raise StepTimeout in the body once it has run `seconds` (no limit off the main thread or without
+    SIGALRM, e.g. on Windows)."""
+    if not hasattr(signal, "setitimer") or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGALRM, _raise)
+    signal.setitimer(signal.ITIMER_REAL, seconds, 0.5)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def stuck_at(exc: BaseException, folder: Path) -> str | None:
+    """`file.py:line in Class.method` of the innermost frame of the traceback inside `folder`, or None."""
+    folder = Path(folder).resolve()
+    where = None
+    tb = exc.__traceback__
+    while tb is not None:
+        path = Path(os.path.abspath(tb.tb_frame.f_code.co_filename))
+        if path.parent == folder:
+            code = tb.tb_frame.f_code
+            name = getattr(code, "co_qualname", code.co_name)
+            place = "at module level" if name == "<module>" else f"in {name}"
+            where = f"{path.name}:{tb.tb_lineno} {place}"
+        tb = tb.tb_next
+    return where

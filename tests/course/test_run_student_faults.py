@@ -1,0 +1,57 @@
+"""`simiam run` with student code that misbehaves: an endless loop is stopped with the location message
+`grade` gives, any exception the student's code raises (sys.exit included) exits non-zero, and edits outside
+the code blocks are listed as `grade` lists them (run here, ignored by grade)."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+import mistakes
+
+from grader.grading import grade_submission
+from grader.sandbox.limits import Limits
+from simiam import run
+from simiam.run import main
+
+
+def _args(folder: Path, out: Path, seconds: float = 3.0) -> argparse.Namespace:
+    return argparse.Namespace(week="week3", path=str(folder), solutions=False, seconds=seconds, dt=0.033,
+                              out=str(out), world=None)
+
+
+def _line(folder: Path, mark: str) -> int:
+    return next(i for i, t in enumerate((folder / "go_to_goal.py").read_text().splitlines(), 1) if mark in t)
+
+
+def test_an_endless_loop_is_stopped_where_grade_says_it_is(tmp_path: Path, capsys, monkeypatch) -> None:
+    folder = mistakes.build("stuck", "week3_endless_loop", tmp_path, 3, "week3")
+    monkeypatch.setattr(run, "STEP_SECONDS", 0.5)
+    assert main(_args(folder, tmp_path / "out")) == 1
+    err = capsys.readouterr().err
+    line = _line(folder, "# STUCK")
+    where = (f"it was still running at go_to_goal.py:{line} in GoToGoal.execute "
+             "(an endless loop or a long wait?)")
+    assert "your code did not answer in time: no answer within 0.5 s, the time limit per step" in err
+    assert where in err
+    graded = grade_submission(3, folder, seed=1, only="week3.go_to_goal.reach_goals",
+                              limits=Limits(call_seconds=0.5, total_seconds=20.0))
+    assert where in graded["checks"][0]["message"]
+    assert (tmp_path / "out" / "week3.json").is_file()
+
+
+def test_student_code_that_exits_makes_the_run_fail(tmp_path: Path, capsys) -> None:
+    folder = mistakes.build("submissions", "week3_exit_when_close", tmp_path, 3, "week3")
+    assert main(_args(folder, tmp_path / "out", seconds=10.0)) == 1
+    err = capsys.readouterr().err
+    line = _line(folder, "WRONG")
+    assert f"go_to_goal.py:{line}: your code called sys.exit() (at t = " in err
+
+
+def test_edits_outside_the_blocks_are_warned_about(tmp_path: Path, capsys) -> None:
+    folder = mistakes.build("submissions", "week3_edit_outside_blocks", tmp_path, 3, "week3")
+    assert main(_args(folder, tmp_path / "out", seconds=0.5)) == 0
+    err = capsys.readouterr().err
+    assert "warning: qb_supervisor.py" in err and "grade runs only the code blocks" in err
+    graded = grade_submission(3, folder, seed=1, only="week3.pid.memory")
+    assert any(n.startswith("qb_supervisor.py") for n in graded["notices"])
