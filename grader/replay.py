@@ -13,6 +13,7 @@ import sys
 from typing import Any, TextIO
 
 from grader.sandbox.errors import StudentError
+from grader.untrusted import printable
 
 _HEAD = """from simiam.control import Pose2D, RobotView
 from simiam.control.controller import Inputs
@@ -113,23 +114,17 @@ def snippet(folder: str, probe: tuple[str, dict[str, Any]] | None) -> str | None
     return None if body is None or week is None else _HEAD.format(folder=folder, week=week) + body
 
 
-def terminal_safe(text: str) -> str:
-    """Student-controlled text for a terminal: control characters (escape sequences that could recolour,
-    move the cursor or retitle the window) are shown as \\xNN instead of being sent."""
-    return "".join(ch if ch in "\n\t" or ch.isprintable() else f"\\x{ord(ch):02x}" for ch in text)
-
-
 def print_replay(result: dict, out: TextIO | None = None) -> None:
     """After a replayed case: what the student's code printed, its traceback and the snippet."""
     out = out or sys.stdout
-    printed = terminal_safe(str(result.get("student_output") or "").strip())
+    printed = printable(str(result.get("student_output") or "").strip())
     if printed:
         print("\nyour code printed:", file=out)
         print("\n".join("  | " + line for line in printed.splitlines()), file=out)
     for c in result.get("checks", []):
         details = c.get("details") or {}
         if details.get("traceback"):
-            print(f"\n{terminal_safe(str(details['traceback']))}", file=out)
+            print(f"\n{printable(str(details['traceback']))}", file=out)
         if details.get("snippet"):
             print("\nto try this case yourself, run this Python next to your folder:\n", file=out)
             print(details["snippet"], file=out)

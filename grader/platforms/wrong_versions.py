@@ -2,7 +2,8 @@
 
 A `<name>.patch` starts with one `# <name>: what the mistake is` line, optionally a
 `# aims: week3.go_to_goal.error_wrap [more ids]` line (the checks it must lose; `none` for a correct
-alternative that must keep full marks: `grade selfcheck` holds every wrong version to it), then a unified
+alternative that must keep full marks: `grade selfcheck` and the test suite hold every wrong version to
+it), optionally more `# ` lines saying why (say, why it also loses a scenario check), then a unified
 diff whose paths name the solution file it changes (`--- a/solutions/week3/go_to_goal.py`). The applier is
 strict: every hunk's old lines must stand in the file exactly (at the stated line, or else at exactly one
 other place), or `MistakeError` says which file and hunk no longer fit, so that a change to solutions/
@@ -95,6 +96,8 @@ def read_mistake(path: Path) -> Mistake:
                 raise MistakeError(f"{path}: hunk {hunk.header} does not have {want_old} old and {want_new} "
                                    f"new lines")
             hunks.append(hunk)
+        elif line.startswith("# ") and week is None:   # why it aims where it does
+            k += 1
         elif line.startswith("\\"):
             raise MistakeError(f"{path}:{k + 1}: files without a final newline are not supported")
         else:

@@ -60,9 +60,11 @@ def test_a_solution_that_loses_points_or_a_stub_that_scores_fails(tmp_path: Path
     assert lines[1].startswith("FAIL  stubs week2: the stub scores on ")
 
 
-def test_every_kept_wrong_version_declares_the_aims_the_grader_tests_expect():
-    aims = {p.stem: read_mistake(p).aims for p in sorted((DATA / "wrong").glob("*.patch"))}
-    assert aims == {name: frozenset(ids) for name, ids in EXPECTED_FAILURES.items()}
+def test_every_kept_wrong_version_declares_its_aims():
+    # the grader tests read EXPECTED_FAILURES from these lines: a patch without one would expect nothing
+    unsaid = [p.name for p in sorted((DATA / "wrong").glob("*.patch")) if read_mistake(p).aims is None]
+    assert unsaid == []
+    assert len(EXPECTED_FAILURES) >= 30 and any(EXPECTED_FAILURES.values())
 
 
 def test_selfcheck_refuses_a_course_the_grader_was_not_installed_from(tmp_path: Path, capsys):
