@@ -37,3 +37,16 @@ def test_a_missing_file_to_write_fails_the_checks_that_need_it(tmp_path: Path) -
     failed = {c["id"]: c["message"] for c in result["checks"] if c["status"] != "passed"}
     assert "week3.pid.integral" in failed and "go_to_goal.py is missing" in failed["week3.pid.integral"]
     assert "week3.ensure_w.keeps_w" not in failed
+
+
+def test_without_the_solutions_at_hand_a_missing_shipped_file_is_named_with_what_to_do(
+        tmp_path: Path, monkeypatch) -> None:
+    # a student's installed package holds no answers: it cannot rebuild the week-3 differential_drive.py
+    # the course shipped (with the week-2 uni_to_diff filled in), so the notice says to copy it back
+    import grader.grading as grading
+
+    monkeypatch.setattr(grading, "ROOT", tmp_path / "no-checkout")
+    result = grade_submission(3, _without(tmp_path, 3, "differential_drive.py"), seed=1)
+    notes = [n for n in result["notices"] if "differential_drive.py is missing" in n]
+    assert len(notes) == 1 and "copy differential_drive.py from your week3 handout" in notes[0]
+    assert result["score"] < result["max_score"]
