@@ -21,6 +21,7 @@ from typing import Any
 
 from grader.checks import Check, Context, checks_for_week, grader_error, run_check
 from grader.result import CheckResult, loss_summary, submission_result
+from grader.result_size import bound_result
 from grader.sandbox.errors import SandboxError
 from grader.sandbox.limits import Limits
 from grader.sandbox.output import cut_middle
@@ -294,6 +295,7 @@ def _invalid(
 
 
 def _finish(result: dict, traces: dict[str, dict], out_dir: Path | str | None) -> dict:
+    result = bound_result(result)      # whatever the worker sent, one result stays under 2 MB
     if out_dir is not None:
         write_outputs(result, traces, Path(out_dir))
     return result

@@ -68,8 +68,10 @@ def _number(value: object) -> float | str:
     return round(float(value), 6)
 
 
-def _one_line(text: object) -> str:
-    return " ".join(str(text or "").split())
+def _one_line(text: object, limit: int = 1000) -> str:
+    """One line of at most ``limit`` characters: a gradebook row stays small whatever a message holds."""
+    line = " ".join(str(text or "").split())
+    return line if len(line) <= limit else line[:limit] + " [...]"
 
 
 def gradescope_result(result: dict) -> dict:

@@ -13,14 +13,18 @@ The run, in order:
    the per-student JSON files, also after Ctrl-C, so a rerun of the same command simply resumes.
 
 Every student gets the same seed (the contract: ``--seed N`` fixes every random choice), so results are
-comparable across the class and do not depend on order or ``--jobs``. Timing lives under ``"timing"``
+comparable across the class and do not depend on order or ``--jobs``. Without ``--seed`` the output
+folder's own secret seed is used (random on the first run, kept in ``out/.seed``), never the public
+default, so hidden goals and worlds cannot be reproduced at home. Timing lives under ``"timing"``
 in each result, apart from what is compared.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import os
+import shutil
 import signal
 import sys
 import time
@@ -34,10 +38,12 @@ from grader.batch.cache import cache_key, grader_fingerprint, is_fresh
 from grader.batch.executors import DaskExecutor, ExecutorError, LocalExecutor
 from grader.batch.exports import write_exports
 from grader.batch.fallback_page import fallback_page
+from grader.batch.names import shown, student_stem
 from grader.batch.progress import Progress
-from grader.batch.store import OutputBusy, exclusive, read_json, student_stem, write_atomic, write_json
+from grader.batch.store import OutputBusy, exclusive, folder_seed, read_json, write_atomic, write_json
 from grader.batch.submissions import Student, Submission, discover, pack, read_submission
 from grader.batch.summary import write_summary
+from grader.result_size import bound_html, bound_result
 from grader.untrusted import printable
 
 # grade_submission bounds each student check with its own timeouts; this budget only catches a grading
@@ -65,7 +71,7 @@ class BatchOptions:
     week: int
     batch_dir: Path
     out: Path
-    seed: int
+    seed: int | None = None          # None: the output folder's secret seed (grader.batch.store.folder_seed)
     jobs: int = field(default_factory=default_jobs)
     hidden: bool = False
     force: bool = False
@@ -83,7 +89,9 @@ class BatchOptions:
         out = given.get("out")
         if not out or out == "reports":      # the single-submission default: keep a batch apart from it
             out = Path("reports") / f"batch-week{week}"
-        return cls(week=week, batch_dir=Path(given["batch"]), out=Path(out), seed=int(given["seed"]),
+        seed = given.get("seed")
+        return cls(week=week, batch_dir=Path(given["batch"]), out=Path(out),
+                   seed=None if seed is None else int(seed),
                    jobs=int(given.get("jobs") or default_jobs()), hidden=bool(given.get("hidden")),
                    force=bool(given.get("force")), quiet=bool(given.get("quiet")),
                    executor=given.get("executor") or "local", scheduler=given.get("scheduler"),
@@ -149,10 +157,12 @@ def run_batch(options: BatchOptions, grade_fn: Callable[[dict], dict] | str | No
     students = [s for s in discover(options.batch_dir) if not _holds(s.path, out)]
     if not students:
         raise BatchError(f"{options.batch_dir} has no student folders or .zip files")
+    stems = _stems(students)
     executor = executor if executor is not None else make_executor(options)
-    run = _Run(options, out, students, stream)
     try:
         with exclusive(out):
+            options = dataclasses.replace(options, seed=folder_seed(out, options.seed))
+            run = _Run(options, out, students, stems, stream)
             try:
                 executor.run(grade_fn or "grader.batch.task:grade_task", run.plan(), run.finish)
             except KeyboardInterrupt:
@@ -166,6 +176,22 @@ def run_batch(options: BatchOptions, grade_fn: Callable[[dict], dict] | str | No
         raise BatchError(str(exc)) from None
 
 
+def _stems(students: list[Student]) -> dict[str, str]:
+    """Each student's output file stem; refuses (BatchError) to map two students to one file, also on a
+    case-insensitive file system. :func:`student_stem` makes this impossible short of a hash collision;
+    the check keeps it so whatever changes there."""
+    stems: dict[str, str] = {}
+    taken: dict[str, str] = {}
+    for student in students:
+        stem = student_stem(student.id)
+        other = taken.setdefault(stem.casefold(), student.id)
+        if other != student.id:
+            raise BatchError(f"students {shown(other)!r} and {shown(student.id)!r} would share the output "
+                             f"file {stem}; rename one of them")
+        stems[student.id] = stem
+    return stems
+
+
 def _holds(path: Path, out: Path) -> bool:
     """True if ``path`` is the output folder or contains it (an --out inside the class folder)."""
     path = path.resolve()
@@ -175,9 +201,9 @@ def _holds(path: Path, out: Path) -> bool:
 class _Run:
     """State of one batch run: what is pending, what finished, and the progress line."""
 
-    def __init__(self, options: BatchOptions, out: Path, students: list[Student], stream: TextIO | None):
-        self.options, self.out, self.students = options, out, students
-        self.stems = {s.id: student_stem(s.id) for s in students}
+    def __init__(self, options: BatchOptions, out: Path, students: list[Student], stems: dict[str, str],
+                 stream: TextIO | None):
+        self.options, self.out, self.students, self.stems = options, out, students, stems
         self.grader = grader_fingerprint()
         self.progress = Progress(len(students), stream=stream, quiet=options.quiet)
         self.pending: dict[str, tuple[Submission, str]] = {}
@@ -200,7 +226,7 @@ class _Run:
                 self.progress.done("skipped")
                 continue
             self.pending[student.id] = (submission, key)
-            task = {"student": student.id, "display": student.path.name, "week": self.options.week,
+            task = {"student": student.id, "display": shown(student.path.name), "week": self.options.week,
                     "seed": self.options.seed, "hidden": self.options.hidden, "sandbox": self.options.sandbox,
                     "grader": self.grader, "check_grader": self.options.executor == "dask"}
             if submission.refused is not None:
@@ -222,13 +248,18 @@ class _Run:
             result["batch"]["traceback"] = outcome["traceback"]
         timing = tm if isinstance(tm := result.get("timing"), dict) else {}
         result["timing"] = {**timing, "batch_seconds": round(float(outcome.get("seconds") or 0.0), 3)}
+        result = bound_result(result)
         stem = self.stems[sid]
-        write_atomic(self.out / f"{stem}.html", html if isinstance(html, str) else fallback_page(sid, result))
+        # The old JSON goes first: until the new one is written this student has no result, so their
+        # HTML and JSON never come from two different gradings.
+        (self.out / f"{stem}.json").unlink(missing_ok=True)
+        html = bound_html(html) if isinstance(html, str) else None
+        write_atomic(self.out / f"{stem}.html", html or fallback_page(shown(sid), result))
         write_json(self.out / f"{stem}.json", result)
         status = result["status"]
         self.record[sid] = {"status": status, "cached": False, "seconds": result["timing"]["batch_seconds"]}
         if status != "graded":
-            self.progress.message(f"{sid}: {status}: {result.get('message', '')}")
+            self.progress.message(f"{shown(sid)}: {status}: {str(result.get('message', ''))[:300]}")
         self.progress.done(status)
 
     def _settle(self, task: dict, outcome: dict) -> tuple[dict, str | None]:
@@ -252,15 +283,19 @@ class _Run:
             stored = read_json(self.out / f"{self.stems[student.id]}.json")
             if stored is not None and self._current(stored):
                 results[student.id] = stored
+            else:
+                self._supersede(self.stems[student.id])
         stems = {sid: self.stems[sid] for sid in results}
         write_exports(self.out, results, stems)
+        self._prune_gradescope(set(stems.values()))
+        not_graded = sorted(shown(s.id) for s in self.students if s.id not in results)
         counts = dict.fromkeys(STATUSES, 0)
         for result in results.values():
             status = result.get("status")
             counts[status if isinstance(status, str) and status in counts else "crashed"] += 1
         incomplete = len(self.students) - len(results)
         meta = {"week": self.options.week, "seed": self.options.seed, "hidden": self.options.hidden,
-                "grader": self.grader, "incomplete": incomplete}
+                "grader": self.grader, "incomplete": incomplete, "not_graded": not_graded}
         write_summary(self.out, results, stems, meta)
         report = {"format": "simiam-batch/1", **meta, "batch_dir": str(self.options.batch_dir.resolve()),
                   "out": str(self.out), "force": self.options.force, "sandbox": self.options.sandbox,
@@ -275,6 +310,29 @@ class _Run:
         write_json(self.out / "batch.json", report)
         self._tell(report)
         return report
+
+    def _supersede(self, stem: str) -> None:
+        """Move a student's files from an older grading (or a half-written pair) to ``superseded/``, so
+        the output folder only ever shows the current grading; nothing is deleted."""
+        for name in (f"{stem}.json", f"{stem}.html", f"gradescope/{stem}"):
+            old = self.out / name
+            if old.exists():
+                target = self.out / "superseded" / name
+                target.parent.mkdir(parents=True, exist_ok=True)
+                if target.is_dir():
+                    shutil.rmtree(target)
+                os.replace(old, target)
+
+    def _prune_gradescope(self, current: set[str]) -> None:
+        """Move Gradescope exports of students with no current result out of ``gradescope/``."""
+        folder = self.out / "gradescope"
+        for entry in sorted(folder.iterdir()) if folder.is_dir() else []:
+            if entry.is_dir() and entry.name not in current:
+                target = self.out / "superseded" / "gradescope" / entry.name
+                target.parent.mkdir(parents=True, exist_ok=True)
+                if target.is_dir():
+                    shutil.rmtree(target)
+                os.replace(entry, target)
 
     def _current(self, stored: dict) -> bool:
         """True if a stored result was graded with this run's week, seed, grader and --hidden. An older

@@ -12,36 +12,37 @@ import errno
 import fcntl
 import json
 import os
+import secrets
 from collections.abc import Iterator
 from pathlib import Path
 
-# The batch's own files; a student with one of these ids gets a suffixed file name instead.
-RESERVED = frozenset({"batch", "summary", "gradebook", "gradescope"})
+LOCK = ".batch.lock"
+SEED = ".seed"         # the folder's secret seed (see :func:`folder_seed`)
 
 
 class OutputBusy(Exception):
     """Another batch is writing to the same output folder."""
 
 
-def student_stem(student_id: str) -> str:
-    """The file name (without suffix) of a student's JSON and HTML in the output folder."""
-    return f"{student_id}.student" if student_id.lower() in RESERVED else student_id
+def write_atomic(path: Path, text: str, mode: int | None = None) -> None:
+    """Write ``text`` to ``path`` so that readers see the old file or the new one, never a torn one.
 
-
-def write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` so that readers see the old file or the new one, never a torn one."""
+    A lone surrogate (a student's non-UTF-8 file name, or text their code sent) is written as ``?``
+    rather than failing the write: nothing a student sends can stop a file from being written."""
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    with open(tmp, "w", encoding="utf-8") as stream:
+    with open(tmp, "w", encoding="utf-8", errors="replace") as stream:
+        if mode is not None:       # before a byte is written: a secret is never readable by others
+            os.fchmod(stream.fileno(), mode)
         stream.write(text)
         stream.flush()
         os.fsync(stream.fileno())
     os.replace(tmp, path)
 
 
-def write_json(path: Path, value: object) -> None:
+def write_json(path: Path, value: object, mode: int | None = None) -> None:
     """Atomically write ``value`` as indented, key-sorted JSON (stable bytes for stable results)."""
-    write_atomic(path, json.dumps(value, indent=2, sort_keys=True, allow_nan=False) + "\n")
+    write_atomic(path, json.dumps(value, indent=2, sort_keys=True, allow_nan=False) + "\n", mode)
 
 
 def read_json(path: Path) -> dict | None:
@@ -55,17 +56,58 @@ def read_json(path: Path) -> dict | None:
 
 @contextlib.contextmanager
 def exclusive(out: Path) -> Iterator[None]:
-    """Hold ``out/.batch.lock`` for the whole run; a second batch on the same folder is refused."""
+    """Hold ``out/.batch.lock`` for the whole run; a second batch on the same folder is refused. The lock
+    file is removed when the run ends (also after Ctrl-C), so none stays behind to puzzle anyone."""
     out.mkdir(parents=True, exist_ok=True)
-    with open(out / ".batch.lock", "w") as lock:
+    path = out / LOCK
+    while True:
+        lock = open(path, "a")
         try:
             fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError as exc:
+            lock.close()
             if exc.errno in (errno.EAGAIN, errno.EWOULDBLOCK, errno.EACCES):
                 raise OutputBusy(f"another batch is already writing to {out}") from None
             # a file system without locks (some network mounts): carry on unlocked rather than refuse
+            lock = open(path, "a")
+            break
+        if _same_file(lock, path):
+            break
+        lock.close()            # the holder before us removed the file after we opened it: lock anew
+    try:
         for stale in out.glob(".*.tmp"):   # left by a batch that was killed mid-write
             stale.unlink(missing_ok=True)
         for stale in out.glob("gradescope/*/.*.tmp"):
             stale.unlink(missing_ok=True)
         yield
+    finally:
+        with contextlib.suppress(OSError):
+            path.unlink()       # while still holding it, so a waiting batch re-checks (see above)
+        lock.close()
+
+
+def _same_file(stream: object, path: Path) -> bool:
+    try:
+        mine, now = os.fstat(stream.fileno()), os.stat(path)  # type: ignore[attr-defined]
+    except OSError:
+        return False
+    return (mine.st_dev, mine.st_ino) == (now.st_dev, now.st_ino)
+
+
+def folder_seed(out: Path, given: int | None) -> int:
+    """The seed of the grading in ``out``: ``given`` (``--seed N``), else the one stored there by an
+    earlier run, else a new secret random one. It is stored in ``out/.seed`` (readable by its owner
+    only) so resumes and regrades reuse it; the public default seed is never used for a batch, so the
+    hidden goals and worlds cannot be reproduced at home."""
+    path = out / SEED
+    if given is None:
+        try:
+            stored = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            stored = None
+        seed = stored.get("seed") if isinstance(stored, dict) else None
+        if type(seed) is int and 0 <= seed < 2**31:
+            return seed
+    seed = given if given is not None else secrets.randbelow(2**31)
+    write_json(path, {"seed": seed, "set_by": "--seed" if given is not None else "random (secret)"}, 0o600)
+    return seed

@@ -14,6 +14,7 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from grader.batch.names import MAX_DEPTH, check_path, check_paths, check_student_id, shown
 from grader.batch.zips import JUNK_PARTS, Limits, SubmissionRefused, is_junk, read_zip
 
 # The files students edit (contract.md); used only to find the submission's root folder inside a zip.
@@ -48,7 +49,7 @@ def discover(batch_dir: Path) -> list[Student]:
     for entry in sorted(batch_dir.iterdir()):
         if entry.name.startswith(".") or entry.name.startswith("__MACOSX"):
             continue
-        if entry.is_symlink() and (entry.is_dir() or entry.suffix.lower() == ".zip"):
+        if entry.is_symlink() and (entry.is_dir() or entry.suffix.lower() in (".zip", "")):
             found.setdefault(entry.name[:-4] if entry.suffix.lower() == ".zip" else entry.name,
                              []).append(("link", entry))
         elif entry.is_dir() and not entry.is_symlink():
@@ -67,20 +68,26 @@ def read_submission(student: Student, limits: Limits | None = None, week: int | 
     picks ``weekN/`` in a submission holding several weeks' folders."""
     limits = limits or Limits()
     try:
+        check_student_id(student.id)
         if student.kind == "clash":
             raise SubmissionRefused(f"both a folder and a zip are named {student.id!r}; keep one")
         if student.kind == "link":
             raise SubmissionRefused(f"{student.path.name} is a link; links are not followed "
                                     "(copy the submission into the class folder)")
         raw = read_zip(student.path, limits) if student.kind == "zip" else read_folder(student.path, limits)
+        check_paths(list(raw))
         root, files = find_root(raw, week)
         if not files:
             raise SubmissionRefused("the submission has no files")
     except SubmissionRefused as refused:
-        return Submission(student, sha256=_hash_path(student.path), refused=str(refused))
+        return Submission(student, sha256=_hash_path(student.path), refused=shown(str(refused)))
     except OSError as exc:          # unreadable file, vanished folder...: this student only
         return Submission(student, sha256=_hash_path(student.path),
-                          refused=f"the submission could not be read ({exc.strerror or exc})")
+                          refused=shown(f"the submission could not be read ({exc.strerror or exc})"))
+    except Exception as exc:  # noqa: BLE001 - whatever one submission does to the reader is its problem
+        return Submission(student, sha256=_hash_path(student.path),
+                          refused=shown(f"the submission could not be read ({type(exc).__name__}: "
+                                        f"{str(exc)[:300]})"))
     return Submission(student, files=files, sha256=content_hash(files), root=root)
 
 
@@ -90,8 +97,11 @@ def read_folder(folder: Path, limits: Limits | None = None) -> dict[str, bytes]:
     base = folder.resolve()
     files: dict[str, bytes] = {}
     total = 0
-    for dirpath, dirnames, filenames in os.walk(folder, followlinks=False):
+    for dirpath, dirnames, filenames in os.walk(folder, followlinks=False, onerror=_walk_error):
         here = Path(dirpath)
+        depth = len(here.relative_to(folder).parts)
+        if depth >= MAX_DEPTH and dirnames:    # refused before walking further: a folder 1000 deep costs 16
+            check_path(tuple(here.relative_to(folder).parts) + (dirnames[0], "x"))
         for name in sorted(dirnames):
             link = here / name
             if name in JUNK_PARTS:
@@ -104,6 +114,7 @@ def read_folder(folder: Path, limits: Limits | None = None) -> dict[str, bytes]:
             rel_parts = path.relative_to(folder).parts
             if is_junk(rel_parts):
                 continue
+            check_path(rel_parts)
             if path.is_symlink():
                 _check_inside(path, base, folder)
             if not path.is_file():
@@ -121,8 +132,16 @@ def read_folder(folder: Path, limits: Limits | None = None) -> dict[str, bytes]:
     return files
 
 
+def _walk_error(exc: OSError) -> None:
+    raise exc           # an unreadable sub-folder is this submission's problem, not silently skipped
+
+
 def _check_inside(link: Path, base: Path, folder: Path) -> None:
-    target = link.resolve()
+    try:
+        target = link.resolve()
+    except (OSError, RuntimeError):        # a link loop: Python 3.11 raises RuntimeError
+        raise SubmissionRefused(f"{link.relative_to(folder)} is a link that leads nowhere (a loop?); "
+                                f"links are not followed") from None
     if target != base and base not in target.parents:
         raise SubmissionRefused(f"{link.relative_to(folder)} is a link to something outside the submission; "
                                 f"links are not followed")
@@ -167,22 +186,29 @@ def content_hash(files: dict[str, bytes]) -> str:
     return digest.hexdigest()
 
 
-def _hash_path(path: Path) -> str:
-    """Hash of what is on disk for a refused submission (so fixing the zip triggers a regrade)."""
-    digest = hashlib.sha256(path.name.encode())
+def _hash_path(path: Path, max_entries: int = 2000) -> str:
+    """Hash of what is on disk for a refused submission (so fixing the zip triggers a regrade). Bounded:
+    a folder a thousand deep or with a million files costs at most ``max_entries`` steps; never raises."""
+    digest = hashlib.sha256(os.fsencode(path.name))
     try:
         if path.is_symlink():       # never read through a link
-            digest.update(os.readlink(path).encode())
+            digest.update(os.fsencode(os.readlink(path)))
         elif path.is_file():
             with path.open("rb") as stream:
                 while chunk := stream.read(1 << 20):
                     digest.update(chunk)
         else:
-            for p in sorted(path.rglob("*")):
-                digest.update(str(p.relative_to(path)).encode())
-                if p.is_file() and not p.is_symlink():
-                    digest.update(str(p.stat().st_size).encode())
-    except OSError:
+            seen = 0
+            for dirpath, dirnames, filenames in os.walk(path, followlinks=False):
+                dirnames.sort()
+                for name in sorted(filenames):
+                    full = os.path.join(dirpath, name)
+                    digest.update(os.fsencode(os.path.relpath(full, path)))
+                    digest.update(str(os.lstat(full).st_size).encode())
+                seen += 1 + len(filenames)
+                if seen > max_entries:
+                    break
+    except (OSError, RecursionError, ValueError):
         pass
     return digest.hexdigest()
 

@@ -84,7 +84,10 @@ Seed {{ seed }}; grader {{ grader }}; hidden checks {{ "included" if hidden else
 {% if mean is not none %}Mean score {{ "%.2f"|format(mean) }}
 {%- if max_score %} / {{ "%g"|format(max_score) }}{% endif %}.{% endif %}</p>
 {% if incomplete %}<p><strong>Incomplete:</strong> {{ incomplete }} submissions not graded yet;
-rerun the same command to finish.</p>{% endif %}
+rerun the same command to finish.</p>
+{% if not_graded %}<p>Not graded yet: {{ not_graded[:200]|join(", ") }}
+{%- if not_graded|length > 200 %} and {{ not_graded|length - 200 }} more{% endif %}.</p>{% endif %}
+{% endif %}
 <h2>Score distribution (graded submissions)</h2>
 {{ histogram }}
 <h2>Checks</h2>
@@ -129,8 +132,8 @@ def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) ->
                 for sid, r in sorted(results.items())]
     return _env.from_string(_TEMPLATE).render(
         csp=STATIC_PAGE_CSP, week=meta.get("week"), seed=meta.get("seed"), hidden=meta.get("hidden"),
-        grader=meta.get("grader"),
-        incomplete=meta.get("incomplete", 0), results=results,
+        grader=meta.get("grader"), incomplete=meta.get("incomplete", 0),
+        not_graded=meta.get("not_graded") or [], results=results,
         status_counts=dict(sorted(status_counts.items())),
         mean=sum(graded) / len(graded) if graded else None, max_score=max_score,
         histogram=histogram_svg(graded, max_score or 1.0, title="Scores of graded submissions"),

@@ -22,15 +22,13 @@ import zlib
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 
+from grader.batch.names import SubmissionRefused, check_path
+
 # Path components that are never part of a submission (editor, OS and VCS litter). They are skipped
 # unread, so they cost nothing and cannot trip the limits.
 JUNK_PARTS = frozenset({"__MACOSX", "__pycache__", ".git", ".hg", ".svn", ".ipynb_checkpoints", ".venv",
                         "venv", ".idea", ".vscode", ".pytest_cache", ".mypy_cache", ".ruff_cache"})
 JUNK_NAMES = frozenset({".DS_Store", "Thumbs.db", "desktop.ini"})
-
-
-class SubmissionRefused(Exception):
-    """A submission that will not be graded, with the reason shown to the instructor and the student."""
 
 
 @dataclass(frozen=True)
@@ -100,6 +98,7 @@ def read_zip(path: Path, limits: Limits | None = None) -> dict[str, bytes]:
                                         f"only plain files are accepted")
             if kind == "dir" or not parts or is_junk(parts):
                 continue
+            check_path(parts)
             if info.flag_bits & 0x1:
                 raise SubmissionRefused(f"zip entry {info.filename!r} is encrypted; "
                                         f"submit it without a password")

@@ -314,5 +314,5 @@ def write_report(result: dict, traces: dict[str, dict] | None, path: str | Path,
                 continue
             hrefs[key] = f"{folder.name}/{_slug(key)}.html"
     out.write_text(render_report(result, traces, replays="none" if replays == "files" else replays,
-                                 replay_hrefs=hrefs), encoding="utf-8")
+                                 replay_hrefs=hrefs), encoding="utf-8", errors="replace")
     return out

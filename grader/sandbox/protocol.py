@@ -11,11 +11,15 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from typing import Any
+
+from grader.sandbox.untrusted import clean
 
 MAX_MESSAGE = 4 * 1024 * 1024  # bytes per message (a 30 s scenario step command is ~200 bytes)
 _FLOAT_TAG = "$float"
 _NONFINITE = {"nan": math.nan, "inf": math.inf, "-inf": -math.inf}
+_SURROGATE_ESCAPE = re.compile(rb"\\u[dD][89a-fA-F]")
 
 
 class ProtocolError(Exception):
@@ -58,7 +62,8 @@ def decode(line: bytes) -> dict:
         raise ProtocolError(f"malformed message: {type(exc).__name__}: {str(exc)[:200]}") from None
     if not isinstance(value, dict):
         raise ProtocolError("message is not a JSON object")
-    return value
+    # JSON may spell a lone surrogate ("\\ud800"); no such string may reach a UTF-8 writer later
+    return clean(value) if _SURROGATE_ESCAPE.search(line) else value
 
 
 class LineReader:

@@ -30,6 +30,16 @@ from grader.sandbox.limits import Limits
 from grader.sandbox.protocol import to_json
 from grader.sandbox.runner import WorkerProcess
 from grader.sandbox.stuck import Stuck, find_stuck
+from grader.sandbox.untrusted import (
+    FILE_CHARS,
+    MAX_ERRORS,
+    MAX_MODULES,
+    MAX_NAMES,
+    MESSAGE_CHARS,
+    NAME_CHARS,
+    TYPE_CHARS,
+    clip,
+)
 from grader.sandbox.workdir import WorkCopy
 
 _KEEP_OUTPUTS = 8  # output of the last workers of a session shown in feedback
@@ -223,35 +233,47 @@ def _student_error(error: Any) -> StudentError:
     """Rebuild a student error from the worker's (untrusted) description, keeping only sane fields."""
     if not isinstance(error, dict):
         return StudentError("the worker reported an error it could not describe", "Error")
-    kind = str(error.get("type")) if isinstance(error.get("type"), str) else "Error"
-    message = str(error.get("message")) if isinstance(error.get("message"), str) else ""
-    file = error.get("file") if isinstance(error.get("file"), str) else None
-    line = error.get("line") if type(error.get("line")) is int else None
+    kind = clip(error.get("type"), TYPE_CHARS, "Error")
+    message = clip(error.get("message"), MESSAGE_CHARS)
+    file = clip(error.get("file"), FILE_CHARS) or None
+    line = _line(error.get("line"))
     if kind == "NotJSON":
         message = f"your code returned {message}, which cannot be sent to the grader " \
                   "(only numbers, strings, lists and dicts can)"
         kind = ""
     raw = error.get("frames")
     frames = [_frame(f) for f in (raw if isinstance(raw, list) else [])[-20:]]
-    return StudentError(message[:1000], kind[:100], file, line, frames=[f for f in frames if f])
+    return StudentError(message, kind, file, line, frames=[f for f in frames if f])
+
+
+def _line(value: Any) -> int | None:
+    return value if type(value) is int and 0 < value < 10**7 else None
 
 
 def _frame(f: Any) -> dict | None:
     """One frame of the worker's (untrusted) traceback: file, line, function and code, or None."""
-    if not isinstance(f, dict) or not isinstance(f.get("file"), str) or type(f.get("line")) is not int:
+    if not isinstance(f, dict) or not isinstance(f.get("file"), str):
+        return None
+    line = _line(f.get("line"))
+    if line is None:
         return None
     function, code = f.get("function"), f.get("code")
-    return {"file": f["file"][:100], "line": f["line"],
-            "function": function[:100] if isinstance(function, str) else "",
-            "code": code[:200] if isinstance(code, str) else ""}
+    return {"file": clip(f["file"], FILE_CHARS), "line": line, "function": clip(function, NAME_CHARS),
+            "code": clip(code, 200)}
 
 
 def _check_load(value: Any) -> dict:
+    """The worker's load report with every field type-checked and capped (it is sent after student code
+    ran, so it may be forged: a million module names, a megabyte of message, a line of 10**300)."""
     if not isinstance(value, dict):
         return {"modules": {}, "errors": [{"file": None, "line": None, "message": "load returned nothing"}]}
-    modules = value.get("modules") if isinstance(value.get("modules"), dict) else {}
-    errors = [e for e in value.get("errors", []) if isinstance(e, dict)] \
+    raw = value.get("modules") if isinstance(value.get("modules"), dict) else {}
+    modules = {clip(name, NAME_CHARS): [clip(n, NAME_CHARS) for n in names[:MAX_NAMES] if isinstance(n, str)]
+               for name, names in list(raw.items())[:MAX_MODULES] if isinstance(names, list)}
+    errors = [e for e in value.get("errors", []) if isinstance(e, dict)][:MAX_ERRORS] \
         if isinstance(value.get("errors"), list) else []
+    errors = [{"file": clip(e.get("file"), FILE_CHARS) or None, "line": _line(e.get("line")),
+               "message": clip(e.get("message"), MESSAGE_CHARS, "could not be loaded")} for e in errors]
     return {"modules": modules, "errors": errors}
 
 

@@ -1,0 +1,47 @@
+"""Text that comes back from the student's worker, made safe to store, print and repeat.
+
+Everything the worker sends is attacker-controlled: an error's file, line, message and type, the load
+report's module and attribute names, state names, probe values. Two rules hold at the grader's side of
+the pipe: no lone surrogate survives (JSON allows ``"\\ud800"``, UTF-8 writers do not), and no text is
+kept longer than the cap of the field it fills.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+FILE_CHARS = 200          # a file name inside the submission
+TYPE_CHARS = 100          # an exception type
+NAME_CHARS = 100          # a module, attribute or state name
+MESSAGE_CHARS = 1000      # an error message
+MAX_MODULES = 32
+MAX_NAMES = 200           # attribute names listed per module
+MAX_ERRORS = 20           # load errors kept
+
+
+def without_surrogates(text: str) -> str:
+    """``text`` with every lone surrogate replaced by U+FFFD."""
+    if not any("\ud800" <= ch <= "\udfff" for ch in text):
+        return text
+    return text.encode("utf-8", "surrogatepass").decode("utf-8", "replace")
+
+
+def clip(value: Any, limit: int, default: str = "") -> str:
+    """``value`` as a string of at most ``limit`` characters (``default`` if it is not a string)."""
+    if not isinstance(value, str):
+        return default
+    value = without_surrogates(value)
+    return value if len(value) <= limit else value[: limit - 25] + f" [... {len(value) - limit + 25} more]"
+
+
+def clean(value: Any, depth: int = 0) -> Any:
+    """A decoded JSON value with lone surrogates replaced in every string and key (depth-bounded)."""
+    if isinstance(value, str):
+        return without_surrogates(value)
+    if depth > 64:
+        return value
+    if isinstance(value, list):
+        return [clean(v, depth + 1) for v in value]
+    if isinstance(value, dict):
+        return {without_surrogates(k): clean(v, depth + 1) for k, v in value.items()}
+    return value
