@@ -11,7 +11,11 @@ workers) and a private pipe pair:
   the sandboxed student workers it started), is reported as ``timeout`` and restarted;
 - a process that dies mid-task is reported as ``crashed`` (with its exit signal) and restarted;
 - processes stay warm between submissions (imports and numpy paid once) and are recycled every
-  ``recycle_after`` tasks so a slow leak cannot build up over 400 submissions.
+  ``recycle_after`` tasks so a slow leak cannot build up over 400 submissions;
+- each grading process gets its own temporary folder (``TMPDIR``), where every copy of student code it
+  makes lives. Whenever the process ends, is killed (timeout, Ctrl-C, abort) or dies, the pool deletes
+  that folder and cleans up after the sandbox uids recorded in it (grader.sandbox.leftovers); a folder
+  left by a runner that was itself killed with SIGKILL is swept by the next pool on the machine.
 
 The grading function is passed by reference (``"module:function"``) so the child imports trusted code
 itself; it must be a module-level function.
@@ -30,9 +34,13 @@ import time
 import traceback
 from collections.abc import Callable, Iterable
 from multiprocessing.connection import Connection, wait
+from pathlib import Path
 from typing import Any
 
 from grader.batch.proctree import die_with_parent, exit_reason, kill_tree
+from grader.sandbox.leftovers import sweep_scratch
+
+SCRATCH_PREFIX = "simiam-slot-"
 
 GradeFn = Callable[[dict], dict]
 
@@ -97,6 +105,7 @@ class _Slot:
         self.send_conn: Connection | None = None
         self.conn: Connection | None = None       # replies; EOF here also means the child died
         self.log: Any = None
+        self.scratch: Path | None = None
         self.task: dict | None = None
         self.started = 0.0
         self.deadline = 0.0
@@ -108,7 +117,10 @@ class _Slot:
         self.close()
         task_r, task_w = os.pipe()
         reply_r, reply_w = os.pipe()
-        env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
+        self.scratch = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
+        self.scratch.chmod(0o711)     # a sandbox uid must reach its own read-only copy inside
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p),
+                   TMPDIR=str(self.scratch))
         # its prints and warnings go to a private log (shown when it crashes), not over the progress line
         self.log = tempfile.TemporaryFile()
         self.proc = subprocess.Popen(
@@ -153,7 +165,9 @@ class _Slot:
         for resource in (self.send_conn, self.conn, self.log):
             if resource is not None:
                 resource.close()
-        self.proc, self.send_conn, self.conn, self.log = None, None, None, None
+        if self.scratch is not None:
+            sweep_scratch(self.scratch)
+        self.proc, self.send_conn, self.conn, self.log, self.scratch = None, None, None, None, None
 
     def log_tail(self, limit: int = 4000) -> str:
         """The end of what the grading process printed (for a crash report)."""
@@ -181,6 +195,7 @@ class WorkerPool:
         self.jobs, self.budget_s, self.recycle_after = max(1, jobs), budget_s, recycle_after
 
     def run(self, tasks: Iterable[dict], on_done: Callable[[dict, dict], None]) -> None:
+        sweep_orphans()
         slots = [_Slot(self.ref) for _ in range(self.jobs)]
         pending = iter(tasks)
         exhausted = False
@@ -242,6 +257,28 @@ class WorkerPool:
             return {"status": "timeout", "value": None,
                     "message": f"grading took longer than {self.budget_s:g} s and was stopped"}
         return None
+
+
+def sweep_orphans(folder: Path | None = None) -> list[Path]:
+    """Sweep the temporary folders of grading processes whose runner is gone (killed with SIGKILL, a
+    power cut): each folder name carries the runner's pid."""
+    swept = []
+    for path in Path(folder or tempfile.gettempdir()).glob(f"{SCRATCH_PREFIX}*-*"):
+        pid = path.name[len(SCRATCH_PREFIX):].split("-", 1)[0]
+        if pid.isdigit() and not _alive(int(pid)) and path.is_dir():
+            sweep_scratch(path)
+            swept.append(path)
+    return swept
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
 
 
 if __name__ == "__main__":

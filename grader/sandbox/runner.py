@@ -24,6 +24,7 @@ import time
 
 from grader.sandbox.errors import StudentTimeout, WorkerDied
 from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
+from grader.sandbox.leftovers import remove_ipc_of
 from grader.sandbox.output import CappedOutput
 from grader.sandbox.protocol import LineReader, ProtocolError, decode, encode
 
@@ -182,6 +183,7 @@ class WorkerProcess:
             kill_uid(self.plan.uid)
             if self.plan.mode == SUBPROCESS:
                 remove_files_of(self.plan.uid)
+                remove_ipc_of(self.plan.uid)
         try:
             self.proc.wait(timeout=5.0)
         except subprocess.TimeoutExpired:
@@ -293,7 +295,7 @@ def kill_uid(uid: int, rounds: int = 20) -> None:
         time.sleep(0.002)
 
 
-_SHARED_DIRS = ("/tmp", "/var/tmp", "/dev/shm")
+_SHARED_DIRS = ("/tmp", "/var/tmp", "/dev/shm", "/dev/mqueue")
 
 
 def remove_files_of(uid: int) -> list[str]:

@@ -15,6 +15,8 @@ import stat
 import tempfile
 from pathlib import Path
 
+from grader.sandbox.leftovers import UID_MARK
+
 MAX_FILE_BYTES = 512 * 1024
 MAX_FILES = 64
 
@@ -48,6 +50,8 @@ class WorkCopy:
                 target.chmod(0o644)
         self.path.chmod(0o755)
         if gid is not None:
+            # who to clean up after if this grading process is killed (grader.sandbox.leftovers)
+            (self._root / UID_MARK).write_text(str(gid))
             for path in (self.path, *self.path.iterdir()):
                 os.chown(path, 0, gid)
                 path.chmod(0o750 if path.is_dir() else 0o640)

@@ -152,9 +152,11 @@ def test_reserved_ids_and_output_inside_the_class_folder(tmp_path: Path) -> None
     report = run_batch(options(tmp_path, out=tmp_path / "class" / "reports"), grade_fn=FAKE)
     out = tmp_path / "class" / "reports"
     assert report["students"] == 2            # the output folder is not taken for a student
-    assert json.loads((out / "batch.student.json").read_text())["score"] == 3.0
+    stems = {json.loads(p.read_text()).get("batch", {}).get("student"): p.stem for p in out.glob("*.json")}
+    assert stems["batch"].startswith("batch~") and stems["summary"].startswith("summary~")
+    assert json.loads((out / f"{stems['batch']}.json").read_text())["score"] == 3.0
     assert json.loads((out / "batch.json").read_text())["format"] == "simiam-batch/1"
-    assert "summary.student.html" in (out / "summary.html").read_text()
+    assert f"{stems['summary']}.html" in (out / "summary.html").read_text()
 
 
 RUNNER = """
