@@ -48,7 +48,8 @@ def _parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--json", dest="json_file", default=None, help="also write the result JSON to this file")
     p.add_argument(
-        "--seed", type=int, default=DEFAULT_SEED, help=f"fixes every random choice ({DEFAULT_SEED})"
+        "--seed", type=int, default=None,
+        help=f"fixes every random choice (default {DEFAULT_SEED}; with --batch a secret one kept in --out)"
     )
     p.add_argument("--hidden", action="store_true", help="also run the hidden checks (official grading)")
     p.add_argument("--check", default=None, help="run only this check id, e.g. week3.pid.integral")
@@ -106,7 +107,7 @@ def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
     result = grade_submission(
         week,
         folder,
-        seed=args.seed,
+        seed=DEFAULT_SEED if args.seed is None else args.seed,
         hidden=args.hidden,
         out_dir=out_dir,
         sandbox=args.sandbox,

@@ -106,7 +106,7 @@ def student_stem(student_id: str) -> str:
     becomes a readable slug, ``~`` and a hash of the exact id (``Alice`` -> ``alice~5c1a...``). A plain
     stem never holds ``~``, so the two kinds cannot meet.
     """
-    if _PLAIN.fullmatch(student_id) and student_id not in RESERVED:
+    if _PLAIN.fullmatch(student_id) and student_id.split(".")[0] not in RESERVED:   # con.x is reserved too
         return student_id
     exact = student_id.encode("utf-8", "surrogateescape") if not _has_lone(student_id) \
         else student_id.encode("utf-8", "surrogatepass")

@@ -165,6 +165,15 @@ def check_body(
 
     The body must parse on its own (so it cannot open a bracket or a string that swallows the stub's code
     after it) and the stub must compile with it in place."""
+    odd = odd_indent(sub_block.body)
+    if odd is not None:
+        offset, char = odd
+        return None, BlockError(
+            file,
+            sub_block.start_line + offset,
+            f"this line of the code block of {sub_block.describe()} is indented with {char}; "
+            "indent with spaces only (Python would move the line out of its function)",
+        )
     dedented = dedent_body(sub_block.body)
     try:
         ast.parse(dedented)
@@ -195,6 +204,23 @@ def check_body(
             f"the code block of {sub_block.describe()} does not fit where it stands: {getattr(e, 'msg', e)}",
         )
     return body, None
+
+
+_WHITESPACE_NAMES = {"\f": "a form feed (\\f)", "\v": "a vertical tab (\\v)"}
+
+
+def odd_indent(body: str) -> tuple[int, str] | None:
+    """(1-based line within the body, what it is) of the first code line indented with anything but spaces
+    and tabs. Python resets the indentation at a form feed, so such a line could leave the block's function
+    and run at module level; other odd whitespace (vertical tab, no-break space) is refused alike."""
+    for n, line in enumerate(source_lines(body, keepends=False), start=1):
+        code = line.lstrip()
+        if not code:
+            continue
+        for ch in line[: len(line) - len(code)]:
+            if ch not in " \t":
+                return n, _WHITESPACE_NAMES.get(ch, f"the character U+{ord(ch):04X}")
+    return None
 
 
 def _plain(msg: str) -> str:

@@ -4,6 +4,8 @@
 ``hang``     never return (and leave a grandchild that   ``crash``   the grading process dies (exit 3)
              must be killed too; its pid in ``pidfile``)  ``raise``   the grading function raises
 ``invalid``  a result with status invalid                 ``garbage`` a reply that is not a result
+``leak F``   copy the submission to a temporary folder (its path written to F), then hang
+``flood N``  a result whose messages, details and report hold N bytes of hostile text
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ import base64
 import os
 import subprocess
 import sys
+import tempfile
 import time
 
 
@@ -55,6 +58,22 @@ def fake_grade(task: dict) -> dict:
         os._exit(3)
     if word == "raise":
         raise RuntimeError("the fake grader broke")
+    if word == "leak":
+        folder = tempfile.mkdtemp(prefix="simiam-batch-")       # what grade_task does with student code
+        with open(os.path.join(folder, "go_to_goal.py"), "w") as stream:
+            stream.write("# student code\n")
+        with open(arg, "w") as stream:
+            stream.write(folder)
+        time.sleep(600)
+    if word == "flood":
+        size = int(arg)
+        result = result_for(task, 5.0)
+        blob = ("<img src=x onerror=alert(1)>\x1b[2J\ud800" * (size // 32 + 1))[:size]
+        result["message"] = blob
+        for check in result["checks"]:
+            check["message"] = blob
+            check["details"] = {"values": list(range(size // 8)), "text": blob}
+        return {"result": result, "html": f"<p>{blob}</p>"}
     if word == "invalid":
         result = result_for(task, 0.0)
         result.update(status="invalid", checks=[], score=0.0, message="go_to_goal.py line 3: invalid syntax")

@@ -30,3 +30,29 @@ def kill_only_the_process(pid: int) -> None:
 def csv_cell_as_is(value: object) -> object:
     """Lets a formula such as =HYPERLINK(...) through to the spreadsheet."""
     return value
+
+
+def student_stem_as_id(student_id: str) -> str:
+    """The old output name: the id itself, suffixed for the batch's own names. "batch" and
+    "batch.student" share a file, a 255-byte id cannot be written, "Alice" and "alice" collide on a
+    case-insensitive disk."""
+    reserved = {"batch", "summary", "gradebook", "gradescope"}
+    return f"{student_id}.student" if student_id.lower() in reserved else student_id
+
+
+def accept_every_name(*_args: object) -> None:
+    """No check of ids or paths: names that cannot exist on disk go on to the grading process."""
+
+
+def keep_scratch(_scratch: object) -> None:
+    """Leaves a killed grading process's temporary folder (student code inside) where it is."""
+
+
+def no_bound(result: dict, limit: int = 0) -> dict:
+    """Stores whatever the worker made the result grow to."""
+    return result
+
+
+def public_seed(_out: object, given: int | None) -> int:
+    """The old default: the public seed, so hidden goals and worlds can be reproduced at home."""
+    return 2014 if given is None else given

@@ -1,0 +1,302 @@
+"""Issue 10: one student can never stop the class or change another student's result.
+
+Folder- and name-level attacks, each against a batch of honest students (the fake grader, so that only
+the batch's own handling is tested): every hostile entry ends as that student's ``invalid`` with a reason,
+the honest students are graded, and batch.json is written. Each test also shows the wrong (earlier)
+behaviour from tests/data/batch/wrong_batch.py failing the same check.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import stat
+import tempfile
+from pathlib import Path
+
+import pytest
+from batch_helpers import make_class, make_zip
+
+from grader.batch import names, pool, runner, store, submissions, zips
+from grader.batch.names import SubmissionRefused, student_stem
+from grader.batch.runner import BatchError, BatchOptions, run_batch
+from grader.batch.submissions import pack, unpack
+
+FAKE = "batch_fake_grader:fake_grade"
+
+
+@pytest.fixture(autouse=True)
+def fixed_grader(monkeypatch) -> None:
+    monkeypatch.setattr(runner, "grader_fingerprint", lambda: "fake-grader")
+
+
+@pytest.fixture(autouse=True)
+def flatten_deep_folders(tmp_path: Path):
+    """Remove the 1000-deep folder after the test: pytest's own (recursive) clean-up of old temporary
+    folders would hit Python's recursion limit on it, in every later pytest run on this machine."""
+    yield
+    for deep in tmp_path.glob("*/deep"):
+        remove_deep_chain(deep)
+
+
+def remove_deep_chain(folder: Path) -> None:
+    """Remove ``folder/d/d/...`` without recursion: pull each inner ``d`` up one level, then drop it."""
+    while (folder / "d").is_dir():
+        os.rename(folder / "d", folder / "d_up")
+        if (folder / "d_up" / "d").is_dir():
+            os.rename(folder / "d_up" / "d", folder / "d")
+        os.rmdir(folder / "d_up")
+
+
+def options(tmp: Path, **kw) -> BatchOptions:
+    base = {"week": 3, "batch_dir": tmp / "class", "out": tmp / "out", "seed": 7, "jobs": 2, "quiet": True,
+            "budget_s": 30.0}
+    return BatchOptions(**{**base, **kw})
+
+
+def _deep_folder(folder: Path, depth: int) -> None:
+    """``folder/d/d/.../d`` ``depth`` levels deep, made relative to an open descriptor (the full path is
+    longer than PATH_MAX, as a student's zip extracted by hand could make it)."""
+    fd = os.open(folder, os.O_RDONLY)
+    for _ in range(depth):
+        os.mkdir("d", dir_fd=fd)
+        child = os.open("d", os.O_RDONLY, dir_fd=fd)
+        os.close(fd)
+        fd = child
+    os.close(fd)
+
+
+def hostile(klass: Path, case: str) -> str:
+    """Add one hostile entry to the class folder; returns the id it is stored under in batch.json."""
+    if case == "id_255_bytes":
+        sid = "a" * 255
+        (klass / sid).mkdir()
+        (klass / sid / "answer.txt").write_text("score 10\n")
+        return sid
+    if case == "id_not_utf8":
+        folder = os.path.join(os.fsencode(klass), b"caf\xe9")
+        os.mkdir(folder)
+        Path(os.fsdecode(folder), "answer.txt").write_text("score 10\n")
+        return os.fsdecode(b"caf\xe9")
+    if case == "id_control_chars":
+        sid = "evil\x1b[2J\x07"
+        (klass / sid).mkdir()
+        (klass / sid / "answer.txt").write_text("score 10\n")
+        return sid
+    if case == "symlink_loop":
+        (klass / "loop").mkdir()
+        (klass / "loop" / "answer.txt").write_text("score 10\n")
+        os.symlink("x", klass / "loop" / "x")
+        return "loop"
+    if case == "nested_1000":
+        (klass / "deep").mkdir()
+        (klass / "deep" / "answer.txt").write_text("score 10\n")
+        _deep_folder(klass / "deep", 1000)
+        return "deep"
+    zips = {"zip_file_and_folder": {"answer.txt": "score 10", "go_to_goal.py": "x", "go_to_goal.py/a": "y"},
+            "zip_case_twins": {"answer.txt": "score 10", "Go_To_Goal.py": "x", "go_to_goal.py": "y"},
+            "zip_long_name": {"answer.txt": "score 10", "n" * 300 + ".py": "x"},
+            "zip_deep": {"answer.txt": "score 10", "d/" * 2000 + "x.py": "x"}}
+    make_zip(klass / f"{case}.zip", zips[case])
+    return case
+
+
+CASES = ["id_255_bytes", "id_not_utf8", "id_control_chars", "symlink_loop", "nested_1000",
+         "zip_file_and_folder", "zip_case_twins", "zip_long_name", "zip_deep"]
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_a_hostile_entry_is_that_students_invalid(tmp_path: Path, case: str) -> None:
+    klass = make_class(tmp_path / "class", {"honest": "score 7", "zz-honest": "score 8"})
+    sid = hostile(klass, case)
+    report = run_batch(options(tmp_path), grade_fn=FAKE)
+    batch = json.loads((tmp_path / "out" / "batch.json").read_text())
+    assert batch["counts"] == {"graded": 2, "invalid": 1, "timeout": 0, "crashed": 0}
+    assert report["per_student"][sid]["status"] == "invalid"
+    stored = json.loads((tmp_path / "out" / f"{student_stem(sid)}.json").read_text())
+    assert stored["status"] == "invalid" and len(stored["message"]) > 20     # a reason, not a bare status
+    assert (tmp_path / "out" / f"{student_stem(sid)}.html").is_file()
+    assert [batch["per_student"][s]["score"] for s in ("honest", "zz-honest")] == [7.0, 8.0]
+
+
+@pytest.mark.parametrize("case", ["zip_file_and_folder", "zip_long_name", "zip_deep"])
+def test_zip_entries_that_cannot_exist_on_disk_really_cannot(tmp_path: Path, case: str, wrong,
+                                                             monkeypatch) -> None:
+    """Without the name checks these zips reach the grading process, whose unpack fails: the student
+    would be ``crashed`` (and a Dask worker would retry them), never ``invalid`` with a reason."""
+    (tmp_path / "class").mkdir()
+    hostile(tmp_path / "class", case)
+    student = submissions.discover(tmp_path / "class")[0]
+    assert submissions.read_submission(student).refused
+    monkeypatch.setattr(submissions, "check_paths", wrong.accept_every_name)
+    monkeypatch.setattr(zips, "check_path", wrong.accept_every_name)
+    naive = submissions.read_submission(student)
+    assert naive.refused is None
+    with pytest.raises((OSError, RecursionError)):
+        unpack(pack(naive.files), Path(tempfile.mkdtemp(dir=tmp_path)))
+
+
+def test_an_unexpected_error_reading_one_submission_is_that_submissions_problem(tmp_path: Path,
+                                                                                monkeypatch) -> None:
+    make_class(tmp_path / "class", {"a": "score 1", "b": "score 2"})
+    real = submissions.read_folder
+
+    def explode(folder: Path, limits: object = None) -> dict:
+        if folder.name == "a":
+            raise KeyError("something nobody foresaw")
+        return real(folder, limits)
+
+    monkeypatch.setattr(submissions, "read_folder", explode)
+    report = run_batch(options(tmp_path), grade_fn=FAKE)
+    assert report["per_student"]["a"]["status"] == "invalid" and report["per_student"]["b"]["score"] == 2.0
+    assert "KeyError" in json.loads((tmp_path / "out" / "a.json").read_text())["message"]
+
+
+IDS = ["alice", "Alice", "ALICE", "batch", "batch.student", "summary", "gradebook", "gradescope", "con",
+       "a" * 128, "a" * 127 + "b", "é" * 60, "<img src=x onerror=alert(1)>", "../x", "x.", ".hidden",
+       "x" * 64, "x" * 65, "alice~0000", os.fsdecode(b"caf\xe9"), os.fsdecode(b"caf\xe8"), "\ud800", "a b"]
+
+
+def test_output_names_are_unique_and_short_by_construction(wrong) -> None:
+    stems = [student_stem(i) for i in IDS]
+    assert len({s.casefold() for s in stems}) == len(IDS)          # unique, also on a case-insensitive disk
+    for stem in stems:
+        assert len(stem.encode()) <= 80 and not stem.startswith(".") and "/" not in stem
+        assert stem.isprintable() and stem.split(".")[0].lower() not in names.RESERVED
+    old = [wrong.student_stem_as_id(i) for i in IDS]
+    assert len({s.casefold() for s in old}) < len(IDS)               # the old names collide
+
+
+def test_the_batch_refuses_to_map_two_students_to_one_file(tmp_path: Path, wrong, monkeypatch) -> None:
+    make_class(tmp_path / "class", {"batch": "score 1", "batch.student": "score 9"})
+    report = run_batch(options(tmp_path), grade_fn=FAKE)             # distinct files today
+    assert sorted(r["score"] for r in report["per_student"].values()) == [1.0, 9.0]
+    monkeypatch.setattr(runner, "student_stem", wrong.student_stem_as_id)
+    with pytest.raises(BatchError, match="would share the output file"):
+        run_batch(options(tmp_path, out=tmp_path / "out2"), grade_fn=FAKE)
+
+
+def test_names_a_student_cannot_use() -> None:
+    for bad in (("a",) * 17, ("n" * 129,), ("x\x1bq.py",)):
+        with pytest.raises(SubmissionRefused):
+            names.check_path(bad)
+    with pytest.raises(SubmissionRefused, match="cannot both exist"):
+        names.check_paths(["A.py", "a.py"])
+    names.check_paths(["week3/go_to_goal.py", "week3/quickbot.py", "README.md"])   # an honest layout
+
+
+# ---- item 4: a result stays under a fixed size whatever the worker sends ------------------------------
+
+def test_one_students_files_stay_under_2_mb(tmp_path: Path, monkeypatch, wrong) -> None:
+    make_class(tmp_path / "class", {"flood": "flood 6000000", "honest": "score 7"})
+    run_batch(options(tmp_path), grade_fn=FAKE)
+    out = tmp_path / "out"
+    for path in (out / "flood.json", out / "flood.html", out / "gradescope" / "flood" / "results.json"):
+        assert path.stat().st_size <= 2_000_000, path
+    result = json.loads((out / "flood.json").read_text())
+    assert result["score"] == 5.0 and "truncated" in result
+    row = next(line for line in (out / "gradebook.csv").read_text().splitlines() if line.startswith("flood"))
+    assert len(row) <= 2000
+    monkeypatch.setattr(runner, "bound_result", wrong.no_bound)
+    run_batch(options(tmp_path, out=tmp_path / "unbounded"), grade_fn=FAKE)
+    assert (tmp_path / "unbounded" / "flood.json").stat().st_size > 2_000_000
+
+
+# ---- item 9: a killed grading process leaves no student code behind -----------------------------------
+
+@pytest.mark.parametrize("keep", [False, True])
+def test_a_killed_grading_process_leaves_no_temp_folder(tmp_path: Path, monkeypatch, wrong, keep) -> None:
+    where = tmp_path / "where.txt"
+    make_class(tmp_path / "class", {"leaky": f"leak {where}", "honest": "score 3"})
+    if keep:
+        monkeypatch.setattr(pool, "sweep_scratch", wrong.keep_scratch)
+    report = run_batch(options(tmp_path, budget_s=3.0), grade_fn=FAKE)
+    assert report["per_student"]["leaky"]["status"] == "timeout"
+    folder = Path(where.read_text())
+    assert folder.is_relative_to(tempfile.gettempdir())
+    assert folder.exists() == keep                 # the wrong pool leaves the student's code on disk
+    if keep:
+        pool.sweep_scratch(folder.parent)
+
+
+def test_folders_of_a_dead_runner_are_swept(tmp_path: Path) -> None:
+    dead = tmp_path / f"{pool.SCRATCH_PREFIX}999999999-abc"       # no such pid
+    alive = tmp_path / f"{pool.SCRATCH_PREFIX}{os.getpid()}-abc"
+    for folder in (dead, alive):
+        (folder / "simiam-batch-x").mkdir(parents=True)
+        (folder / "simiam-batch-x" / "go_to_goal.py").write_text("# student code\n")
+    assert pool.sweep_orphans(tmp_path) == [dead]
+    assert not dead.exists() and alive.exists()
+
+
+# ---- item 10: a secret seed per output folder ----------------------------------------------------------
+
+def test_batch_grading_uses_a_secret_seed_kept_with_the_output(tmp_path: Path, monkeypatch, wrong) -> None:
+    make_class(tmp_path / "class", {"a": "score 1"})
+    first = run_batch(options(tmp_path, seed=None), grade_fn=FAKE)
+    other = run_batch(options(tmp_path, seed=None, out=tmp_path / "other"), grade_fn=FAKE)
+    seed_file = tmp_path / "out" / store.SEED
+    assert stat.S_IMODE(seed_file.stat().st_mode) == 0o600
+    assert first["seed"] == json.loads(seed_file.read_text())["seed"] != 2014
+    assert first["seed"] != other["seed"]            # not predictable from one folder to the next
+    again = run_batch(options(tmp_path, seed=None), grade_fn=FAKE)  # a resume or regrade reuses it
+    assert again["seed"] == first["seed"] and again["this_run"]["skipped"] == 1
+    fixed = run_batch(options(tmp_path, seed=12), grade_fn=FAKE)     # --seed N fixes one, and it is kept
+    assert fixed["seed"] == 12 == run_batch(options(tmp_path, seed=None), grade_fn=FAKE)["seed"]
+    monkeypatch.setattr(runner, "folder_seed", wrong.public_seed)
+    assert run_batch(options(tmp_path, seed=None, out=tmp_path / "old"), grade_fn=FAKE)["seed"] == 2014
+
+
+def test_the_grade_command_leaves_the_batch_seed_unset() -> None:
+    from grader.cli import _parser
+
+    args = _parser().parse_args(["week3", "--batch", "x"])
+    assert BatchOptions.from_args(args).seed is None
+    assert BatchOptions.from_args(_parser().parse_args(["week3", "--batch", "x", "--seed", "5"])).seed == 5
+
+
+# ---- issue 13 item 12: an interrupted regrade never mixes two gradings ---------------------------------
+
+class StopAfterOne:
+    """An executor stopped (Ctrl-C) right after its first student."""
+
+    def describe(self) -> dict:
+        return {"executor": "stop-after-one"}
+
+    def run(self, grade_fn, tasks, on_done) -> None:
+        import batch_fake_grader
+
+        task = next(iter(tasks))
+        on_done(task, {"status": "ok", "value": batch_fake_grader.fake_grade(task), "seconds": 0.0})
+        raise KeyboardInterrupt
+
+
+def test_an_interrupted_regrade_never_mixes_two_gradings(tmp_path: Path) -> None:
+    make_class(tmp_path / "class", {"a": "score 1", "b": "score 2", "c": "score 3"})
+    run_batch(options(tmp_path, seed=5), grade_fn=FAKE)
+    out = tmp_path / "out"
+    report = run_batch(options(tmp_path, seed=6), executor=StopAfterOne())
+    assert report["interrupted"] and report["not_graded"] == ["b", "c"]
+    for path in [*out.glob("*.json"), *out.glob("gradescope/*/results.json")]:
+        if path.name != "batch.json":
+            assert json.loads(path.read_text()).get("seed", 6) == 6, path      # only the current grading
+    assert sorted(p.name for p in out.glob("gradescope/*")) == ["a"]
+    assert sorted(p.name for p in out.glob("*.html")) == ["a.html", "summary.html"]
+    assert json.loads((out / "superseded" / "b.json").read_text())["seed"] == 5   # kept, out of the way
+    assert "Not graded yet: b, c" in (out / "summary.html").read_text()
+    assert not (out / store.LOCK).exists()                                       # no stale lock
+    again = run_batch(options(tmp_path, seed=6), grade_fn=FAKE)
+    assert again["incomplete"] == 0 and sorted(p.name for p in out.glob("gradescope/*")) == ["a", "b", "c"]
+    assert not (out / store.LOCK).exists()
+
+
+def test_the_lock_file_goes_with_the_run(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    with store.exclusive(out):
+        assert (out / store.LOCK).exists()
+        with pytest.raises(store.OutputBusy), store.exclusive(out):
+            pass
+        assert (out / store.LOCK).exists()         # the refused second batch leaves the holder's lock alone
+    assert not (out / store.LOCK).exists()
+    with store.exclusive(out):                      # and the folder can be locked again
+        pass
