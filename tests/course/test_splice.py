@@ -74,12 +74,24 @@ def check_swallow(fn) -> None:
         assert "Steer.execute" not in result.blocks_taken
 
 
-CHECKS = [check_reordered, check_reindented, check_outside_not_run, check_swallow]
+def check_form_feed(fn) -> None:
+    """A form feed (or other odd whitespace) in a block's indentation is refused with file and line: Python
+    resets the column at a form feed, so the line would leave its function and run at module level."""
+    result = fn(STUB, read("form_feed.py"), "controller.py")
+    namespace: dict = {}
+    exec(compile(result.text, "controller.py", "exec"), namespace)
+    assert namespace["wheel_speed"](1.0, 0.5) == 0.0          # the stub's placeholder, not the student's 99
+    assert [(e.file, e.line) for e in result.errors] == [("controller.py", 31)]
+    assert "form feed" in result.errors[0].message and "wheel_speed" in result.errors[0].message
+
+
+CHECKS = [check_reordered, check_reindented, check_outside_not_run, check_swallow, check_form_feed]
 CAUGHT_BY = {
     "by_ordinal": check_reordered,
     "no_reindent": check_reindented,
     "whole_file": check_outside_not_run,
     "no_syntax_check": check_swallow,
+    "no_whitespace_check": check_form_feed,
 }
 
 
@@ -297,3 +309,13 @@ def test_hostile_sizes_are_refused_or_summarised():
     for body in ("-" * 100_000 + "1", "4.0\x00"):
         result = splice(STUB, GOOD.replace("self.Kp = 4.0", f"self.Kp = {body}"), "controller.py")
         assert [e.line for e in result.errors] in ([8], [9]) and "Steer.__init__" in result.blocks_kept
+
+
+@pytest.mark.parametrize("char, name", [("\f", "form feed"), ("\v", "vertical tab"), ("\u00a0", "U+00A0"),
+                                        ("\u3000", "U+3000")])
+def test_odd_whitespace_in_indentation_is_named(char, name):
+    from simiam.course.splice import odd_indent
+
+    assert odd_indent(f"    x = 1\n    {char}y = 2\n") == (2, odd_indent(f"{char}y")[1])
+    assert name in odd_indent(f"{char}y")[1]
+    assert odd_indent("    x = 1\n\f\n\t y = 2\n") is None       # a page break on a blank line is harmless

@@ -43,5 +43,17 @@ def no_syntax_check(stub_text, submission_text, filename):
                            blocks_taken=[s.describe() for s in stub])
 
 
+def no_whitespace_check(stub_text, submission_text, filename):
+    """The real splice without the indentation check: a form feed in a block's indentation lets the block
+    leave its function (Python resets the column at a form feed)."""
+    from simiam.course import splice as splice_module
+
+    check, splice_module.odd_indent = splice_module.odd_indent, lambda body: None
+    try:
+        return splice_module.splice(stub_text, submission_text, filename)
+    finally:
+        splice_module.odd_indent = check
+
+
 WRONG = {"by_ordinal": by_ordinal, "no_reindent": no_reindent, "whole_file": whole_file,
-         "no_syntax_check": no_syntax_check}
+         "no_syntax_check": no_syntax_check, "no_whitespace_check": no_whitespace_check}
