@@ -14,8 +14,8 @@ FILE_CHARS = 200          # a file name inside the submission
 TYPE_CHARS = 100          # an exception type
 NAME_CHARS = 100          # a module, attribute or state name
 MESSAGE_CHARS = 1000      # an error message
-MAX_MODULES = 32
-MAX_NAMES = 200           # attribute names listed per module
+MAX_MODULES = 16        # a week has at most six student files
+MAX_NAMES = 100           # attribute names listed per module (only membership is used)
 MAX_ERRORS = 20           # load errors kept
 
 
@@ -23,7 +23,7 @@ def without_surrogates(text: str) -> str:
     """``text`` with every lone surrogate replaced by U+FFFD."""
     if not any("\ud800" <= ch <= "\udfff" for ch in text):
         return text
-    return text.encode("utf-8", "surrogatepass").decode("utf-8", "replace")
+    return "".join("\ufffd" if "\ud800" <= ch <= "\udfff" else ch for ch in text)
 
 
 def clip(value: Any, limit: int, default: str = "") -> str:

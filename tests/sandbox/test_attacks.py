@@ -6,6 +6,7 @@ sandbox say so. End-to-end scores are in test_attacks_graded.py.
 
 from __future__ import annotations
 
+import ctypes
 import math
 import os
 import socket
@@ -20,7 +21,7 @@ from sandbox_helpers import AS_ROOT, HONEST, attack, honest_probe
 
 from grader.sandbox import validate
 from grader.sandbox.errors import StudentError, StudentTimeout, WorkerDied
-from grader.sandbox.isolation import BWRAP
+from grader.sandbox.isolation import BWRAP, SUBPROCESS
 from grader.sandbox.limits import Limits
 from grader.sandbox.runner import _uid_alive
 
@@ -346,3 +347,58 @@ def test_channel_and_signal_abuse(open_one, kind, error, message):
         attack(session, kind=kind)
     assert honest_probe(session) == pytest.approx(HONEST)  # a fresh worker answers
     assert session.starts == 2
+
+
+def _sysv_keys() -> set[tuple[str, int]]:
+    """(kind, key) of every System V IPC object on this machine's IPC namespace."""
+    found = set()
+    for kind in ("shm", "msg", "sem"):
+        try:
+            lines = Path(f"/proc/sysvipc/{kind}").read_text().splitlines()[1:]
+        except OSError:
+            continue
+        found.update((kind, int(line.split()[0])) for line in lines if line.strip())
+    return found
+
+
+def _remove_sysv(kind_keys: list) -> None:
+    from grader.sandbox.leftovers import _IPC_RMID
+
+    libc = ctypes.CDLL(None, use_errno=True)
+    for kind, key in kind_keys:
+        ident = (libc.shmget if kind == "shm" else libc.msgget)(key, 0, *([0] if kind == "shm" else []))
+        if ident >= 0:
+            (libc.shmctl if kind == "shm" else libc.msgctl)(ident, _IPC_RMID, None)
+
+
+@pytest.mark.parametrize("sweep", [True, False], ids=["swept", "wrong-not-swept"])
+def test_ipc_objects_and_shared_files_do_not_outlive_the_worker(open_session, mode, monkeypatch, sweep):
+    """Issue 10 item 9. Under bubblewrap the sandbox's own IPC namespace and /tmp die with it; in
+    subprocess mode (root, the worker's own uid) the grader removes by uid what it left. The wrong version
+    (no IPC removal, as before) leaves the shared memory for the next student."""
+    from grader.sandbox import runner as sandbox_runner
+
+    if not sweep:
+        if mode != SUBPROCESS or not AS_ROOT:
+            pytest.skip("the wrong version only shows in subprocess mode with a dedicated uid")
+        monkeypatch.setattr(sandbox_runner, "remove_ipc_of", lambda uid: [])
+    key = 0x51570000 + (os.getpid() % 0xFFFF)
+    session = open_session("ipc_leftovers")
+    left = attack(session, key=key)
+    session.close()
+    created = {(kind, k) for kind, k in left["sysv"]}
+    try:
+        if mode == BWRAP:
+            assert not created & _sysv_keys()            # never in the machine's namespace at all
+        elif not AS_ROOT:
+            pytest.skip("without a dedicated uid subprocess mode cannot tell leftovers apart (documented)")
+        else:
+            assert created, "the attack could not create System V objects: the test would prove nothing"
+            assert bool(created & _sysv_keys()) != sweep
+        if sweep:
+            assert not [p for p in left["files"] if os.path.exists(p)]
+    finally:
+        _remove_sysv(sorted(created & _sysv_keys()))
+        for path in left["files"]:
+            if os.path.exists(path):
+                os.unlink(path)

@@ -31,3 +31,14 @@ def find_stuck(dump: bytes, folder: str):
         if m.group(1).startswith(folder):
             return m.group(1)[len(folder):].lstrip("/"), int(m.group(2)), m.group(3)
     return None
+
+
+def student_error_fields(error: dict) -> tuple:
+    """The earlier rebuild of a worker error: message and type cut, but the file name taken whole."""
+    return (str(error.get("message"))[:1000], str(error.get("type"))[:100], error.get("file"),
+            error.get("line"))
+
+
+def check_load(value: dict) -> dict:
+    """The earlier load report check: types only, every name, error and message kept whole."""
+    return {"modules": value.get("modules", {}), "errors": value.get("errors", [])}
