@@ -41,7 +41,7 @@ NOTES = {
                 "killed with its whole process tree, and only JSON crosses back; it can import only the "
                 "course's student-facing modules, but it can read what its user can read (for example "
                 "solutions/ or the grader's files if they are world-readable) and write to /tmp while it "
-                "runs.",
+                "runs. {leftovers}",
 }
 
 
@@ -276,12 +276,17 @@ def _describe_subprocess() -> str:
     limited = ", resource-limited" if has_module("resource") else ""
     note = functools.partial(NOTES[SUBPROCESS].format, limited=limited)
     net = " with network sockets blocked by a seccomp filter" if available() else " with network access"
+    cannot = ("Files it writes anywhere its user can write and the System V / POSIX IPC objects it "
+              "creates outlive the grading: nothing tells them apart from yours, so none are removed.")
     if os.geteuid() != 0:
         return note(net=net, uid=" under your own user, so it could also signal the grader, write where you "
-                    "can write and leave processes behind: treat this result as advisory")
+                    "can write and leave processes behind: treat this result as advisory", leftovers=cannot)
     if _uid_range()[1] - _uid_range()[0] < 1000:
         return note(net=net, uid=" that stays root (no spare uid is mapped here, so the process limit does "
-                    "not bind and files root can write are writable)")
+                    "not bind and files root can write are writable)", leftovers=cannot)
     env_note = " (the Python environment is private to root here, so only modules preloaded before the " \
                "drop can be imported)" if _private_env() else ""
-    return note(net=net, uid=f" under its own unprivileged uid{env_note}")
+    swept = ("What its uid leaves in /tmp, /var/tmp, /dev/shm and /dev/mqueue, and its System V IPC "
+             "objects, are removed when its grading ends or is killed; files in any other place that uid "
+             "can write are not.")
+    return note(net=net, uid=f" under its own unprivileged uid{env_note}", leftovers=swept)

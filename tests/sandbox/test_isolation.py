@@ -71,3 +71,14 @@ def test_a_grader_with_many_open_files_still_talks_to_its_worker(shared_dir, mod
     finally:
         for fd in held:
             os.close(fd)
+
+
+def test_the_subprocess_note_says_what_cannot_be_cleaned(monkeypatch):
+    """Issue 10 item 9: the isolation note of subprocess mode names what outlives a grading."""
+    monkeypatch.setattr(isolation.os, "geteuid", lambda: 1000)
+    as_user = isolation.describe("subprocess")
+    assert "System V / POSIX IPC" in as_user and "outlive the grading" in as_user
+    monkeypatch.setattr(isolation.os, "geteuid", lambda: 0)
+    monkeypatch.setattr(isolation, "_uid_range", lambda: (200_000, 260_000))
+    as_root = isolation.describe("subprocess")
+    assert "System V IPC objects, are removed" in as_root and "any other place" in as_root
