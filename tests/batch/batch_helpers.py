@@ -7,6 +7,7 @@ import ...`` could pick up another folder's.)
 from __future__ import annotations
 
 import importlib.util
+import os
 import stat
 import zipfile
 from pathlib import Path
@@ -46,3 +47,63 @@ def make_class(root: Path, answers: dict[str, str], zipped: tuple[str, ...] = ()
             (root / sid).mkdir()
             (root / sid / "answer.txt").write_text(answer + "\n")
     return root
+
+
+def _deep_folder(folder: Path, depth: int) -> None:
+    """``folder/d/d/.../d`` ``depth`` levels deep, made relative to an open descriptor (the full path is
+    longer than PATH_MAX, as a student's zip extracted by hand could make it)."""
+    fd = os.open(folder, os.O_RDONLY)
+    for _ in range(depth):
+        os.mkdir("d", dir_fd=fd)
+        child = os.open("d", os.O_RDONLY, dir_fd=fd)
+        os.close(fd)
+        fd = child
+    os.close(fd)
+
+
+def hostile(klass: Path, case: str) -> str:
+    """Add one hostile entry to the class folder; returns the id it is stored under in batch.json."""
+    if case == "id_255_bytes":
+        sid = "a" * 255
+        (klass / sid).mkdir()
+        (klass / sid / "answer.txt").write_text("score 10\n")
+        return sid
+    if case == "id_not_utf8":
+        folder = os.path.join(os.fsencode(klass), b"caf\xe9")
+        os.mkdir(folder)
+        Path(os.fsdecode(folder), "answer.txt").write_text("score 10\n")
+        return os.fsdecode(b"caf\xe9")
+    if case == "id_control_chars":
+        sid = "evil\x1b[2J\x07"
+        (klass / sid).mkdir()
+        (klass / sid / "answer.txt").write_text("score 10\n")
+        return sid
+    if case == "symlink_loop":
+        (klass / "loop").mkdir()
+        (klass / "loop" / "answer.txt").write_text("score 10\n")
+        os.symlink("x", klass / "loop" / "x")
+        return "loop"
+    if case == "nested_1000":
+        (klass / "deep").mkdir()
+        (klass / "deep" / "answer.txt").write_text("score 10\n")
+        _deep_folder(klass / "deep", 1000)
+        return "deep"
+    zips = {"zip_file_and_folder": {"answer.txt": "score 10", "go_to_goal.py": "x", "go_to_goal.py/a": "y"},
+            "zip_case_twins": {"answer.txt": "score 10", "Go_To_Goal.py": "x", "go_to_goal.py": "y"},
+            "zip_long_name": {"answer.txt": "score 10", "n" * 300 + ".py": "x"},
+            "zip_deep": {"answer.txt": "score 10", "d/" * 2000 + "x.py": "x"}}
+    make_zip(klass / f"{case}.zip", zips[case])
+    return case
+
+
+CASES = ["id_255_bytes", "id_not_utf8", "id_control_chars", "symlink_loop", "nested_1000",
+         "zip_file_and_folder", "zip_case_twins", "zip_long_name", "zip_deep"]
+
+
+def remove_deep_chain(folder: Path) -> None:
+    """Remove ``folder/d/d/...`` without recursion: pull each inner ``d`` up one level, then drop it."""
+    while (folder / "d").is_dir():
+        os.rename(folder / "d", folder / "d_up")
+        if (folder / "d_up" / "d").is_dir():
+            os.rename(folder / "d_up" / "d", folder / "d")
+        os.rmdir(folder / "d_up")

@@ -15,7 +15,7 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from batch_helpers import make_class, make_zip
+from batch_helpers import CASES, hostile, make_class, remove_deep_chain
 
 from grader.batch import names, pool, runner, store, submissions, zips
 from grader.batch.names import SubmissionRefused, student_stem
@@ -39,70 +39,10 @@ def flatten_deep_folders(tmp_path: Path):
         remove_deep_chain(deep)
 
 
-def remove_deep_chain(folder: Path) -> None:
-    """Remove ``folder/d/d/...`` without recursion: pull each inner ``d`` up one level, then drop it."""
-    while (folder / "d").is_dir():
-        os.rename(folder / "d", folder / "d_up")
-        if (folder / "d_up" / "d").is_dir():
-            os.rename(folder / "d_up" / "d", folder / "d")
-        os.rmdir(folder / "d_up")
-
-
 def options(tmp: Path, **kw) -> BatchOptions:
     base = {"week": 3, "batch_dir": tmp / "class", "out": tmp / "out", "seed": 7, "jobs": 2, "quiet": True,
             "budget_s": 30.0}
     return BatchOptions(**{**base, **kw})
-
-
-def _deep_folder(folder: Path, depth: int) -> None:
-    """``folder/d/d/.../d`` ``depth`` levels deep, made relative to an open descriptor (the full path is
-    longer than PATH_MAX, as a student's zip extracted by hand could make it)."""
-    fd = os.open(folder, os.O_RDONLY)
-    for _ in range(depth):
-        os.mkdir("d", dir_fd=fd)
-        child = os.open("d", os.O_RDONLY, dir_fd=fd)
-        os.close(fd)
-        fd = child
-    os.close(fd)
-
-
-def hostile(klass: Path, case: str) -> str:
-    """Add one hostile entry to the class folder; returns the id it is stored under in batch.json."""
-    if case == "id_255_bytes":
-        sid = "a" * 255
-        (klass / sid).mkdir()
-        (klass / sid / "answer.txt").write_text("score 10\n")
-        return sid
-    if case == "id_not_utf8":
-        folder = os.path.join(os.fsencode(klass), b"caf\xe9")
-        os.mkdir(folder)
-        Path(os.fsdecode(folder), "answer.txt").write_text("score 10\n")
-        return os.fsdecode(b"caf\xe9")
-    if case == "id_control_chars":
-        sid = "evil\x1b[2J\x07"
-        (klass / sid).mkdir()
-        (klass / sid / "answer.txt").write_text("score 10\n")
-        return sid
-    if case == "symlink_loop":
-        (klass / "loop").mkdir()
-        (klass / "loop" / "answer.txt").write_text("score 10\n")
-        os.symlink("x", klass / "loop" / "x")
-        return "loop"
-    if case == "nested_1000":
-        (klass / "deep").mkdir()
-        (klass / "deep" / "answer.txt").write_text("score 10\n")
-        _deep_folder(klass / "deep", 1000)
-        return "deep"
-    zips = {"zip_file_and_folder": {"answer.txt": "score 10", "go_to_goal.py": "x", "go_to_goal.py/a": "y"},
-            "zip_case_twins": {"answer.txt": "score 10", "Go_To_Goal.py": "x", "go_to_goal.py": "y"},
-            "zip_long_name": {"answer.txt": "score 10", "n" * 300 + ".py": "x"},
-            "zip_deep": {"answer.txt": "score 10", "d/" * 2000 + "x.py": "x"}}
-    make_zip(klass / f"{case}.zip", zips[case])
-    return case
-
-
-CASES = ["id_255_bytes", "id_not_utf8", "id_control_chars", "symlink_loop", "nested_1000",
-         "zip_file_and_folder", "zip_case_twins", "zip_long_name", "zip_deep"]
 
 
 @pytest.mark.parametrize("case", CASES)
