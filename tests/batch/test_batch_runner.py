@@ -10,13 +10,14 @@ import os
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
 import pytest
 from batch_helpers import HERE, make_class, make_zip
 
-from grader.batch import cache, runner
+from grader.batch import cache, pool, runner
 from grader.batch.runner import BatchError, BatchOptions, run_batch
 
 FAKE = "batch_fake_grader:fake_grade"
@@ -197,6 +198,9 @@ def test_killed_batch_keeps_what_was_graded_and_resumes(tmp_path: Path, how: int
     os.kill(proc.pid, how)
     code = proc.wait(timeout=30)
     assert code == (130 if how == signal.SIGTERM else -signal.SIGKILL)
+    scratch = list(Path(tempfile.gettempdir()).glob(f"{pool.SCRATCH_PREFIX}{proc.pid}-*"))
+    # a clean stop deletes its grading processes' temporary folders; a SIGKILL leaves them to the next run
+    assert scratch == [] if how == signal.SIGTERM else len(scratch) >= 1
     out = tmp_path / "out"
     assert {p.stem for p in out.glob("*.json")} - {"batch"} == {"a", "b", "c"}
     assert [json.loads((out / f"{s}.json").read_text())["score"] for s in "abc"] == [1.0, 2.0, 3.0]
@@ -209,6 +213,7 @@ def test_killed_batch_keeps_what_was_graded_and_resumes(tmp_path: Path, how: int
     calls = tmp_path / "calls.txt"
     monkeypatch.setenv("BATCH_CALLS", str(calls))
     report = run_batch(options(tmp_path, seed=5), grade_fn=COUNT)
+    assert not any(path.exists() for path in scratch)           # swept by the next run
     assert sorted(calls.read_text().split()) == ["d", "e"]
     assert report["counts"]["graded"] == 5 and not report["interrupted"]
 
