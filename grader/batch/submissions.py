@@ -99,9 +99,6 @@ def read_folder(folder: Path, limits: Limits | None = None) -> dict[str, bytes]:
     total = 0
     for dirpath, dirnames, filenames in os.walk(folder, followlinks=False, onerror=_walk_error):
         here = Path(dirpath)
-        depth = len(here.relative_to(folder).parts)
-        if depth >= MAX_DEPTH and dirnames:    # refused before walking further: a folder 1000 deep costs 16
-            check_path(tuple(here.relative_to(folder).parts) + (dirnames[0], "x"))
         for name in sorted(dirnames):
             link = here / name
             if name in JUNK_PARTS:
@@ -109,6 +106,10 @@ def read_folder(folder: Path, limits: Limits | None = None) -> dict[str, bytes]:
             elif link.is_symlink():
                 _check_inside(link, base, folder)
                 dirnames.remove(name)      # never walk through a link, even an inward one
+        parts = here.relative_to(folder).parts
+        if len(parts) >= MAX_DEPTH and dirnames:   # refused before walking on: 1000 deep costs 16 steps
+            raise SubmissionRefused(f"{shown('/'.join(parts))[:200]}/{shown(dirnames[0])[:60]}/... is nested "
+                                    f"more than {MAX_DEPTH} folders deep; at most {MAX_DEPTH} are accepted")
         for name in sorted(filenames):
             path = here / name
             rel_parts = path.relative_to(folder).parts
