@@ -62,9 +62,10 @@ def honest_entries(klass: Path) -> None:
     (klass / "odd-file" / XSS_FILE).write_text("print('not part of the assignment')\n")
 
 
-@pytest.fixture(scope="module")
-def graded(tmp_path_factory) -> dict:
-    base = tmp_path_factory.mktemp("trust")
+@pytest.fixture(scope="module", params=["auto", "subprocess"])
+def graded(tmp_path_factory, request) -> dict:
+    """The class graded once per isolation mode ("auto" is bubblewrap where it works)."""
+    base = tmp_path_factory.mktemp(f"trust-{request.param}")
     klass = base / "class"
     klass.mkdir()
     honest_entries(klass)
@@ -77,15 +78,15 @@ def graded(tmp_path_factory) -> dict:
     (base / "outside").mkdir()
     ids = {case: hostile(klass, case) for case in CASES}
     try:
-        yield _grade(base, klass, ids)
+        yield _grade(base, klass, ids, request.param)
     finally:
         remove_deep_chain(klass / "deep")
 
 
-def _grade(base: Path, klass: Path, ids: dict) -> dict:
+def _grade(base: Path, klass: Path, ids: dict, sandbox: str) -> dict:
     before = tree(base)
     mine = set(Path(tempfile.gettempdir()).glob(f"{pool.SCRATCH_PREFIX}{os.getpid()}-*"))
-    options = {"week": 2, "seed": 5, "quiet": True, "budget_s": 240.0, "jobs": 2}
+    options = {"week": 2, "seed": 5, "quiet": True, "budget_s": 240.0, "jobs": 2, "sandbox": sandbox}
     report = run_batch(BatchOptions(batch_dir=klass, out=base / "out", **options))
     after = tree(base)
     left = set(Path(tempfile.gettempdir()).glob(f"{pool.SCRATCH_PREFIX}{os.getpid()}-*")) - mine
