@@ -24,13 +24,7 @@ from typing import Any
 
 from grader.sandbox import isolation
 from grader.sandbox.capabilities import has_module, with_refused_limits
-from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeout, WorkerDied
-from grader.sandbox.exposed import build_library
-from grader.sandbox.limits import Limits
-from grader.sandbox.protocol import to_json
-from grader.sandbox.runner import WorkerProcess
-from grader.sandbox.stuck import Stuck, find_stuck
-from grader.sandbox.untrusted import (
+from grader.sandbox.caps import (
     FILE_CHARS,
     MAX_ERRORS,
     MAX_MODULES,
@@ -40,6 +34,12 @@ from grader.sandbox.untrusted import (
     TYPE_CHARS,
     clip,
 )
+from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeout, WorkerDied
+from grader.sandbox.exposed import build_library
+from grader.sandbox.limits import Limits
+from grader.sandbox.protocol import to_json
+from grader.sandbox.runner import WorkerProcess
+from grader.sandbox.stuck import Stuck, find_stuck
 from grader.sandbox.workdir import WorkCopy
 
 _KEEP_OUTPUTS = 8  # output of the last workers of a session shown in feedback

@@ -11,7 +11,7 @@ from sandbox_wrong import naive
 
 from grader.grading import write_outputs
 from grader.result_size import MAX_RESULT_BYTES, bound_result, result_bytes
-from grader.sandbox import untrusted
+from grader.sandbox import caps
 from grader.sandbox.protocol import decode
 from grader.sandbox.session import _check_load, _student_error
 
@@ -35,8 +35,8 @@ def text_size(value: object) -> int:
 
 def test_a_forged_error_is_capped_field_by_field() -> None:
     error = _student_error(FORGED_ERROR)
-    assert len(error.message) <= untrusted.MESSAGE_CHARS and len(error.type_name) <= untrusted.TYPE_CHARS
-    assert len(error.file) <= untrusted.FILE_CHARS and error.line is None
+    assert len(error.message) <= caps.MESSAGE_CHARS and len(error.type_name) <= caps.TYPE_CHARS
+    assert len(error.file) <= caps.FILE_CHARS and error.line is None
     assert len(str(error)) < 1500
     assert len(str(naive.student_error_fields(FORGED_ERROR)[2])) > 1_000_000      # the old rebuild kept it
 
@@ -44,7 +44,7 @@ def test_a_forged_error_is_capped_field_by_field() -> None:
 def test_a_forged_load_report_is_capped() -> None:
     load = _check_load(FORGED_LOAD)
     assert len(json.dumps(load)) < 200_000
-    assert len(load["modules"]) <= untrusted.MAX_MODULES and len(load["errors"]) <= untrusted.MAX_ERRORS
+    assert len(load["modules"]) <= caps.MAX_MODULES and len(load["errors"]) <= caps.MAX_ERRORS
     assert text_size(naive.check_load(FORGED_LOAD)) > 100_000_000
 
 
