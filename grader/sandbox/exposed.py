@@ -41,6 +41,7 @@ EXPOSED: tuple[str, ...] = (
     "grader/__init__.py",
     "grader/probes.py",
     "grader/sandbox/__init__.py",
+    "grader/sandbox/caps.py",          # imported by protocol.py (caps on what the worker sends back)
     "grader/sandbox/errors.py",
     "grader/sandbox/limits.py",
     "grader/sandbox/protocol.py",
