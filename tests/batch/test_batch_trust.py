@@ -132,9 +132,9 @@ def test_nothing_outside_the_output_folder_changes(graded) -> None:
     assert graded["left"] == set()           # no grading process's temporary folder (student code) is left
 
 
-@pytest.mark.xfail(reason="HTML escaping of student-controlled text is fixed on the `display` branch "
-                          "(issue 10 item 2); this test passes once it is merged", strict=False)
 def test_no_page_of_the_class_runs_script(graded) -> None:
+    """Issue 10 item 2 (escaping: the display branch), checked on the whole hostile class: ids, file
+    names, prints and exception text carry <img onerror> and <script> payloads."""
     browser = pytest.importorskip("browser")
     out = graded["base"] / "out"
     pages = sorted(p for p in out.rglob("*.html") if "superseded" not in p.parts)
