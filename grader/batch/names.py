@@ -1,16 +1,18 @@
 """Names a student controls: their id (the class-folder entry) and the paths inside their submission.
 
-Both are hostile input. A name that cannot exist on every file system the grader may write to (a
-255-byte id, bytes that are not UTF-8, a file and a folder of the same name, a path a thousand folders
-deep, control characters) must end as that student's ``invalid`` with a reason, never as an exception
-that stops the class. :func:`check_student_id` and :func:`check_paths` say why a name is refused;
-:func:`student_stem` derives the output file name of a student, unique by construction.
+Both are hostile input. A name that cannot exist on every file system the grader may write to, or that
+could pass for another (a 255-byte id, bytes that are not UTF-8, a file and a folder of the same name, a
+path a thousand folders deep, control or invisible characters), must end as that student's ``invalid``
+with a reason, never as an exception that stops the class. :func:`check_student_id` and
+:func:`check_paths` say why a name is refused; :func:`student_stem` derives the output file name of a
+student, unique by construction.
 """
 
 from __future__ import annotations
 
 import hashlib
 import re
+import unicodedata
 
 
 class SubmissionRefused(Exception):
@@ -26,7 +28,14 @@ RESERVED = frozenset({"batch", "summary", "gradebook", "gradescope", "con", "prn
                       *(f"com{i}" for i in range(10)), *(f"lpt{i}" for i in range(10))})
 _PLAIN = re.compile(r"[a-z0-9](?:[a-z0-9._-]{0,62}[a-z0-9_-])?")   # ids used as they are
 _SLUG_DROP = re.compile(r"[^a-z0-9_-]+")
-_CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]")
+# Characters that print nothing of their own but act on a terminal or the text around them (controls, bidi
+# overrides, zero-width characters, line separators: the categories grader.untrusted shows as escapes). A
+# name holding one could pass for another student's, or rewrite the instructor's screen.
+_HIDDEN = frozenset({"Cc", "Cf", "Zl", "Zp"})
+
+
+def _hidden_char(text: str) -> str | None:
+    return next((ch for ch in text if not (" " <= ch <= "~") and unicodedata.category(ch) in _HIDDEN), None)
 
 
 def shown(text: str) -> str:
@@ -48,13 +57,14 @@ def _utf8_size(name: str, what: str) -> int:
 
 
 def check_student_id(sid: str) -> None:
-    """Refuse an id that is not UTF-8, too long, or holds control characters (SubmissionRefused)."""
+    """Refuse an id that is not UTF-8, too long, or holds control or invisible characters
+    (SubmissionRefused)."""
     size = _utf8_size(sid, "the folder or zip name")
     if size > MAX_ID_BYTES:
         raise SubmissionRefused(f"the folder or zip name is {size} bytes long; a student id may have at "
                                 f"most {MAX_ID_BYTES} (rename it to the student's id)")
-    if _CONTROL.search(sid):
-        raise SubmissionRefused(f"the folder or zip name {ascii(sid)} holds control characters; "
+    if _hidden_char(sid) is not None:
+        raise SubmissionRefused(f"the folder or zip name {ascii(sid)} holds control or invisible characters; "
                                 f"rename it to the student's id")
 
 
@@ -93,8 +103,8 @@ def check_path(parts: tuple[str, ...]) -> None:
     for part in parts:
         if len(part.encode("utf-8")) > MAX_PART_BYTES:
             raise SubmissionRefused(f"the name {part[:60]!r}... is longer than {MAX_PART_BYTES} bytes")
-        if _CONTROL.search(part):
-            raise SubmissionRefused(f"the name {ascii(part)} holds control characters")
+        if _hidden_char(part) is not None:
+            raise SubmissionRefused(f"the name {ascii(part)} holds control or invisible characters")
 
 
 def student_stem(student_id: str) -> str:

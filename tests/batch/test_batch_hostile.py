@@ -117,9 +117,14 @@ def test_the_batch_refuses_to_map_two_students_to_one_file(tmp_path: Path, wrong
 
 
 def test_names_a_student_cannot_use() -> None:
-    for bad in (("a",) * 17, ("n" * 129,), ("x\x1bq.py",)):
+    for bad in (("a",) * 17, ("n" * 129,), ("x\x1bq.py",), ("go_to_goal\u202eyp.py",)):
         with pytest.raises(SubmissionRefused):
             names.check_path(bad)
+    for bad_id in ("alice\u200b", "a\u202eb", "evil\x1b[2J", "x" * 129, "caf\udce9"):
+        with pytest.raises(SubmissionRefused):
+            names.check_student_id(bad_id)
+    for good_id in ("alice", "Café Ωmega", "o'brien-2"):
+        names.check_student_id(good_id)
     with pytest.raises(SubmissionRefused, match="cannot both exist"):
         names.check_paths(["A.py", "a.py"])
     names.check_paths(["week3/go_to_goal.py", "week3/quickbot.py", "README.md"])   # an honest layout
