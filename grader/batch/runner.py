@@ -204,6 +204,8 @@ class _Run:
     def __init__(self, options: BatchOptions, out: Path, students: list[Student], stems: dict[str, str],
                  stream: TextIO | None):
         self.options, self.out, self.students, self.stems = options, out, students, stems
+        assert options.seed is not None, "run_batch resolves the seed (folder_seed) before a run starts"
+        self.seed: int = options.seed
         self.grader = grader_fingerprint()
         self.progress = Progress(len(students), stream=stream, quiet=options.quiet)
         self.pending: dict[str, tuple[Submission, str]] = {}
@@ -216,7 +218,7 @@ class _Run:
         """Tasks for the students that need grading, read one at a time as slots free up."""
         for student in self.students:
             submission = read_submission(student, week=self.options.week)
-            key = cache_key(self.options.week, self.options.seed, self.options.hidden, submission.sha256,
+            key = cache_key(self.options.week, self.seed, self.options.hidden, submission.sha256,
                             self.grader)
             stem = self.stems[student.id]
             stored = read_json(self.out / f"{stem}.json")
@@ -227,7 +229,7 @@ class _Run:
                 continue
             self.pending[student.id] = (submission, key)
             task = {"student": student.id, "display": shown(student.path.name), "week": self.options.week,
-                    "seed": self.options.seed, "hidden": self.options.hidden, "sandbox": self.options.sandbox,
+                    "seed": self.seed, "hidden": self.options.hidden, "sandbox": self.options.sandbox,
                     "grader": self.grader, "check_grader": self.options.executor == "dask"}
             if submission.refused is not None:
                 self.finish(task, {"status": "invalid", "value": None, "message": submission.refused,
@@ -294,7 +296,7 @@ class _Run:
             status = result.get("status")
             counts[status if isinstance(status, str) and status in counts else "crashed"] += 1
         incomplete = len(self.students) - len(results)
-        meta = {"week": self.options.week, "seed": self.options.seed, "hidden": self.options.hidden,
+        meta = {"week": self.options.week, "seed": self.seed, "hidden": self.options.hidden,
                 "grader": self.grader, "incomplete": incomplete, "not_graded": not_graded}
         write_summary(self.out, results, stems, meta)
         report = {"format": "simiam-batch/1", **meta, "batch_dir": str(self.options.batch_dir.resolve()),
@@ -339,7 +341,7 @@ class _Run:
         one (a rerun with another seed, stopped half-way) is left out of the class files and counted as
         not graded yet, so the gradebook never mixes two gradings."""
         batch = b if isinstance(b := stored.get("batch"), dict) else {}
-        return (stored.get("week") == self.options.week and stored.get("seed") == self.options.seed
+        return (stored.get("week") == self.options.week and stored.get("seed") == self.seed
                 and batch.get("grader") == self.grader
                 and bool(stored.get("hidden", self.options.hidden)) == self.options.hidden)
 

@@ -267,7 +267,7 @@ def _check_load(value: Any) -> dict:
     ran, so it may be forged: a million module names, a megabyte of message, a line of 10**300)."""
     if not isinstance(value, dict):
         return {"modules": {}, "errors": [{"file": None, "line": None, "message": "load returned nothing"}]}
-    raw = value.get("modules") if isinstance(value.get("modules"), dict) else {}
+    raw: dict = value["modules"] if isinstance(value.get("modules"), dict) else {}
     modules = {clip(name, NAME_CHARS): [clip(n, NAME_CHARS) for n in names[:MAX_NAMES] if isinstance(n, str)]
                for name, names in list(raw.items())[:MAX_MODULES] if isinstance(names, list)}
     errors = [e for e in value.get("errors", []) if isinstance(e, dict)][:MAX_ERRORS] \
