@@ -21,6 +21,7 @@ from grader.batch import names, pool, runner, store, submissions, zips
 from grader.batch.names import SubmissionRefused, student_stem
 from grader.batch.runner import BatchError, BatchOptions, run_batch
 from grader.batch.submissions import pack, unpack
+from grader.sandbox import leftovers
 
 FAKE = "batch_fake_grader:fake_grade"
 
@@ -161,7 +162,8 @@ def test_a_killed_grading_process_leaves_no_temp_folder(tmp_path: Path, monkeypa
     assert folder.is_relative_to(tempfile.gettempdir())
     assert folder.exists() == keep                 # the wrong pool leaves the student's code on disk
     if keep:
-        pool.sweep_scratch(folder.parent)
+        leftovers.sweep_scratch(folder.parent)    # the real sweep (pool's is the wrong one in this run)
+        assert not folder.parent.exists()
 
 
 def test_folders_of_a_dead_runner_are_swept(tmp_path: Path) -> None:
