@@ -161,8 +161,9 @@ def test_a_killed_grading_process_leaves_no_temp_folder(tmp_path: Path, monkeypa
     folder = Path(where.read_text())
     assert folder.is_relative_to(tempfile.gettempdir())
     assert folder.exists() == keep                 # the wrong pool leaves the student's code on disk
-    if keep:
-        leftovers.sweep_scratch(folder.parent)    # the real sweep (pool's is the wrong one in this run)
+    if keep:       # the real sweep, for every slot of this run (pool's is the wrong one here)
+        for scratch in Path(tempfile.gettempdir()).glob(f"{pool.SCRATCH_PREFIX}{os.getpid()}-*"):
+            leftovers.sweep_scratch(scratch)
         assert not folder.parent.exists()
 
 
