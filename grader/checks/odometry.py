@@ -13,11 +13,10 @@ from __future__ import annotations
 import math
 from itertools import accumulate
 
-from hypothesis import strategies as st
-
 from grader import reference as ref
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import WILD, fmt, vector
+from grader.domains import Floats, Integers, Lists, Row
 from grader.properties import run_property
 
 NEEDS = ("qb_supervisor.py",)
@@ -48,8 +47,8 @@ def _path_examples(ctx: Context) -> list[dict]:
     return out
 
 
-_tick_steps = st.lists(st.tuples(st.integers(-4, 4), st.integers(-4, 4)).map(list), min_size=1, max_size=10)
-_starts = st.tuples(st.floats(-1, 1), st.floats(-1, 1), st.floats(-math.pi, math.pi)).map(list)
+_tick_steps = Lists(Row(Integers(-4, 4), Integers(-4, 4)), min_size=1, max_size=10)
+_starts = Row(Floats(-1, 1), Floats(-1, 1), Floats(-math.pi, math.pi))
 
 
 def _estimates(ctx: Context, steps: list, start: list) -> list[list[float]]:

@@ -14,23 +14,22 @@ from __future__ import annotations
 import math
 from typing import Any, NamedTuple
 
-from hypothesis import strategies as st
-
 from grader import reference as ref
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import fmt, number, vector
+from grader.domains import Floats, Lists, SampledFrom
 from grader.properties import run_property
 
 NEEDS = ("go_to_goal.py",)
 V = 0.2
 
-_coord = st.floats(-1.0, 1.0)
+_coord = Floats(-1.0, 1.0)
 # poses facing roughly +x and goals ahead of them: theta_g - theta stays inside (-pi, pi), no wrap needed
-_facing = st.floats(-1.4, 1.4)
-_ahead = st.floats(0.2, 2.0)
-_side = st.floats(-2.0, 2.0)
-_dts = st.sampled_from([0.01, 0.033, 0.05, 0.1])
-_memory = st.floats(-1.0, 1.0)  # E_k and e_k_1 as earlier calls may have left them
+_facing = Floats(-1.4, 1.4)
+_ahead = Floats(0.2, 2.0)
+_side = Floats(-2.0, 2.0)
+_dts = SampledFrom([0.01, 0.033, 0.05, 0.1])
+_memory = Floats(-1.0, 1.0)  # E_k and e_k_1 as earlier calls may have left them
 
 
 class Answer(NamedTuple):
@@ -119,7 +118,7 @@ def theta_g(ctx: Context) -> Outcome:
     strategies = {
         "x": _coord,
         "y": _coord,
-        "theta": st.floats(-math.pi, math.pi),
+        "theta": Floats(-math.pi, math.pi),
         "x_g": _coord,
         "y_g": _coord,
     }
@@ -153,7 +152,7 @@ def error_wrap(ctx: Context) -> Outcome:
         {"theta": th, "x_g": -1.0, "y_g": gy}
         for th, gy in ((-3.0, 0.1), (3.0, -0.1), (2 * math.pi, 0.5), (-4 * math.pi + 0.3, -0.5))
     ]
-    strategies = {"theta": st.floats(-4 * math.pi, 4 * math.pi), "x_g": _coord, "y_g": _coord}
+    strategies = {"theta": Floats(-4 * math.pi, 4 * math.pi), "x_g": _coord, "y_g": _coord}
     return run_property(
         ctx,
         "week3.go_to_goal.error_wrap",
@@ -201,7 +200,7 @@ def _term(name: str, gain: str, expected_of, formula: str):
         if not _close(a.v, V):
             raise Mismatch(f"{_where(pose, goal)} your v was {fmt(a.v)}, expected inputs.v = {V}")
 
-    gains = st.floats(0.5, 10.0) if gain != "Kd" else st.floats(0.01, 1.0)
+    gains = Floats(0.5, 10.0) if gain != "Kd" else Floats(0.01, 1.0)
     strategies = {
         "x": _coord,
         "y": _coord,
@@ -265,7 +264,7 @@ def memory(ctx: Context) -> Outcome:
                     f"gave {fmt(fresh[n].w)}: keep what the next call needs in E_k and e_k_1 only"
                 )
 
-    strategies = {"thetas": st.lists(_facing, min_size=3, max_size=3), "dt": _dts}
+    strategies = {"thetas": Lists(_facing, min_size=3, max_size=3), "dt": _dts}
     return run_property(
         ctx,
         "week3.pid.memory",

@@ -9,13 +9,12 @@ from __future__ import annotations
 import math
 import random
 
-from hypothesis import strategies as st
-
 from grader import reference as ref
 from grader import scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import amount, fmt, off_by, vector
 from grader.checks.odometry import ODOMETRY_CHECKS
+from grader.domains import Floats
 from grader.properties import run_property
 
 DRIVE = ("differential_drive.py",)
@@ -29,8 +28,8 @@ ANGLE_HINT = (
     "really turns at w (its own checks) and that update_odometry's theta follows the wheels"
 )
 
-speeds = st.floats(-0.3, 0.3, allow_nan=False)
-turns = st.floats(-5.0, 5.0, allow_nan=False)
+speeds = Floats(-0.3, 0.3)
+turns = Floats(-5.0, 5.0)
 
 
 def _wheels(ctx: Context, v: float, w: float) -> tuple[float, float]:

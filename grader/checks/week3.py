@@ -10,13 +10,12 @@ from __future__ import annotations
 import math
 import random
 
-from hypothesis import strategies as st
-
 from grader import reference as ref
 from grader import scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import WILD, fmt, vector
 from grader.checks.pid import PID_CHECKS
+from grader.domains import Floats
 from grader.properties import run_property
 
 SUPERVISOR = ("qb_supervisor.py",)
@@ -51,7 +50,7 @@ def _ensure_w(ctx: Context, v: float, w: float) -> tuple[float, float]:
     return vel_r, vel_l
 
 
-_ensure_inputs = {"v": st.floats(-0.5, 0.5), "w": st.floats(-5.4, 5.4)}
+_ensure_inputs = {"v": Floats(-0.5, 0.5), "w": Floats(-5.4, 5.4)}
 _saturating = [{"v": 0.25, "w": 3.0}, {"v": -0.25, "w": -3.0}, {"v": 10.0, "w": 1.0}]
 
 

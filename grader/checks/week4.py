@@ -11,12 +11,12 @@ import math
 import random
 
 import numpy as np
-from hypothesis import strategies as st
 
 from grader import reference as ref
 from grader import scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import fmt, matrix, number, vector
+from grader.domains import Floats, Lists
 from grader.properties import run_property
 from simiam.world import World, load_world
 
@@ -40,9 +40,9 @@ COLLISION_HINT = (
 )
 STILL_HINT = "Hint: AvoidObstacles must keep driving at inputs.v and only steer (w) away from obstacles"
 
-_coord = st.floats(-1.5, 1.5)
-_angle = st.floats(-math.pi, math.pi)
-_distance = st.floats(0.04, 0.3)
+_coord = Floats(-1.5, 1.5)
+_angle = Floats(-math.pi, math.pi)
+_distance = Floats(0.04, 0.3)
 
 
 def _pose_words(x: float, y: float, theta: float) -> str:
@@ -113,7 +113,7 @@ def _frame_check(frame: str):
                 )
 
     strategies = {
-        "distances": st.lists(_distance, min_size=5, max_size=5),
+        "distances": Lists(_distance, min_size=5, max_size=5),
         "x": _coord,
         "y": _coord,
         "theta": _angle,
@@ -262,7 +262,7 @@ def heading(ctx: Context) -> Outcome:
     return run_property(
         ctx,
         "week4.avoid.heading",
-        {"distances": st.lists(_distance, min_size=5, max_size=5), "theta": _angle},
+        {"distances": Lists(_distance, min_size=5, max_size=5), "theta": _angle},
         case,
         examples=examples,
         max_examples=15,
