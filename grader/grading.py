@@ -15,7 +15,7 @@ import functools
 import json
 import tempfile
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -193,77 +193,117 @@ def grade_submission(
     """
     week = int(week)
     submission = Path(submission)
-    selected, left_out = select_checks(week, hidden, only)
     traces = {} if traces is None else traces
     began = time.monotonic()
-    extra: dict[str, Any] = {
-        "hidden": hidden,
-        "hidden_checks_not_run": len(left_out),
-        "visible_checks": sum(c.visibility == "visible" for c in selected),
-    }
-    if not submission.is_dir():
-        result = _invalid(week, seed, submission, selected, f"no such folder: {submission}", extra)
-        return _finish(result, traces, out_dir)
-    try:
-        job = _Job(week, submission, seed, hidden, sandbox, case, limits, replay_prefix, selected, extra,
-                   traces, began)
-        result = _grade(job)
-    except CourseFilesMissing:
-        raise
-    except Exception as exc:  # noqa: BLE001 - a grader bug: the student is told so, never a traceback
-        message, details = grader_error(exc, whole=True)
-        extra["grader_error"] = details["grader_error"]
-        result = _invalid(week, seed, submission, selected, message, extra)
+    with tempfile.TemporaryDirectory(prefix="simiam-grade-") as tmp:
+        # the worker starts first: it boots while the checks (and the report's templates) are imported
+        started = _start(week, submission, Path(tmp), limits, sandbox) if submission.is_dir() else None
+        try:
+            selected, left_out = select_checks(week, hidden, only)
+            if out_dir is not None and started is not None:
+                _import_report()
+            extra: dict[str, Any] = {
+                "hidden": hidden,
+                "hidden_checks_not_run": len(left_out),
+                "visible_checks": sum(c.visibility == "visible" for c in selected),
+            }
+            if started is None:
+                result = _invalid(week, seed, submission, selected, f"no such folder: {submission}", extra)
+                return _finish(result, traces, out_dir)
+            try:
+                job = _Job(week, submission, seed, hidden, sandbox, case, limits, replay_prefix, selected,
+                           extra, traces, began)
+                result = _grade(job, started)
+            except CourseFilesMissing:
+                raise
+            except Exception as exc:  # noqa: BLE001 - a grader bug: the student is told so, never a traceback
+                message, details = grader_error(exc, whole=True)
+                extra["grader_error"] = details["grader_error"]
+                result = _invalid(week, seed, submission, selected, message, extra)
+        finally:
+            if started is not None and started.session is not None:
+                started.session.close()
     return _finish(result, traces, out_dir)
 
 
-def _grade(job: _Job) -> dict:
-    """Splice, load and run the checks of one submission folder (grade_submission's work)."""
-    with tempfile.TemporaryDirectory(prefix="simiam-grade-") as tmp:
-        spliced, problems, notices = _splice(job.week, job.submission, Path(tmp))
-        job.extra["notices"] = notices
-        session = StudentSession(job.week, spliced, job.limits, sandbox=job.sandbox)
+@dataclass
+class _Started:
+    """A spliced submission whose worker is starting, or the error that stopped it (raised by _grade)."""
+
+    spliced: Path | None = None
+    problems: dict[str, list[str]] = field(default_factory=dict)
+    notices: list[str] = field(default_factory=list)
+    session: StudentSession | None = None
+    error: Exception | None = None
+
+
+def _start(week: int, submission: Path, tmp: Path, limits: Limits | None, sandbox: str) -> _Started:
+    """Splice the submission and spawn its worker without waiting for it (StudentSession.start)."""
+    try:
+        spliced, problems, notices = _splice(week, submission, tmp)
+        session = StudentSession(week, spliced, limits, sandbox=sandbox)
+    except Exception as exc:  # noqa: BLE001 - raised again by _grade, where grade_submission handles it
+        return _Started(error=exc)
+    session.start()
+    return _Started(spliced, problems, notices, session)
+
+
+def _import_report() -> None:
+    """Import the HTML report (jinja2) now, while the worker starts, rather than after the checks."""
+    try:
+        import grader.report.html  # noqa: F401
+    except ImportError:  # the report package is optional: write_outputs says so
+        pass
+
+
+def _grade(job: _Job, started: _Started) -> dict:
+    """Load and run the checks of one spliced submission (grade_submission's work)."""
+    if started.error is not None:
+        raise started.error
+    assert started.session is not None
+    problems, session = started.problems, started.session
+    job.extra["notices"] = started.notices
+    try:
         try:
-            try:
-                loaded = session.load()
-            except SandboxError as exc:
-                job.extra["isolation"] = session.isolation
-                job.extra["isolation_note"] = session.isolation_note
-                message = f"your code could not be loaded at all: {exc.message}"
-                return _invalid(job.week, job.seed, job.submission, job.selected, message, job.extra)
-            for file, texts in _load_problems(job.week, loaded).items():
-                problems.setdefault(file, []).extend(texts)
+            loaded = session.load()
+        except SandboxError as exc:
             job.extra["isolation"] = session.isolation
             job.extra["isolation_note"] = session.isolation_note
-            if not loaded.get("modules"):
-                message = "none of your files could be loaded: " + "; ".join(
-                    t for v in problems.values() for t in v
-                )
-                return _invalid(job.week, job.seed, job.submission, job.selected, message, job.extra)
-            prefix = job.replay_prefix
-            if prefix is None:
-                prefix = f"grade week{job.week} {job.submission}"
-            ctx = Context(
-                week=job.week,
-                seed=job.seed,
-                session=session,
-                hidden=job.hidden,
-                case=job.case,
-                traces=job.traces,
-                replay_prefix=prefix + (" --hidden" if job.hidden else "") + f" --seed {job.seed}",
-                submission=str(job.submission),
+            message = f"your code could not be loaded at all: {exc.message}"
+            return _invalid(job.week, job.seed, job.submission, job.selected, message, job.extra)
+        for file, texts in _load_problems(job.week, loaded).items():
+            problems.setdefault(file, []).extend(texts)
+        job.extra["isolation"] = session.isolation
+        job.extra["isolation_note"] = session.isolation_note
+        if not loaded.get("modules"):
+            message = "none of your files could be loaded: " + "; ".join(
+                t for v in problems.values() for t in v
             )
-            results: list[CheckResult] = []
-            timing = {}
-            for check in job.selected:
-                t0 = time.monotonic()
-                results.append(run_check(check, ctx, problems))
-                timing[check.id] = round(time.monotonic() - t0, 3)
-            job.extra["problems"] = problems
-            job.extra["student_output"] = cut_middle(session.output(), 4000)
-            job.extra["timing"] = {"total_seconds": round(time.monotonic() - job.began, 3), "checks": timing}
-        finally:
-            session.close()
+            return _invalid(job.week, job.seed, job.submission, job.selected, message, job.extra)
+        prefix = job.replay_prefix
+        if prefix is None:
+            prefix = f"grade week{job.week} {job.submission}"
+        ctx = Context(
+            week=job.week,
+            seed=job.seed,
+            session=session,
+            hidden=job.hidden,
+            case=job.case,
+            traces=job.traces,
+            replay_prefix=prefix + (" --hidden" if job.hidden else "") + f" --seed {job.seed}",
+            submission=str(job.submission),
+        )
+        results: list[CheckResult] = []
+        timing = {}
+        for check in job.selected:
+            t0 = time.monotonic()
+            results.append(run_check(check, ctx, problems))
+            timing[check.id] = round(time.monotonic() - t0, 3)
+        job.extra["problems"] = problems
+        job.extra["student_output"] = cut_middle(session.output(), 4000)
+        job.extra["timing"] = {"total_seconds": round(time.monotonic() - job.began, 3), "checks": timing}
+    finally:
+        session.close()
     return submission_result(
         week=job.week,
         seed=job.seed,

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 from grader.cli import main as grade_main
@@ -166,3 +168,26 @@ def test_skeletons_out_of_date_with_the_solutions_refuse(tmp_path: Path, monkeyp
             grading.pristine_stubs(3, tmp_path / "splice")
     finally:
         grading._skeletons_out_of_date.cache_clear()
+
+
+def test_the_worker_starts_before_the_weeks_checks_are_imported(tmp_path: Path) -> None:
+    """The worker boots (0.15-0.3 s) while the grading process imports the checks and the report."""
+    code = f"""
+import sys
+from pathlib import Path
+from grader.sandbox.session import StudentSession
+start = StudentSession.start
+seen = []
+def recording(self):
+    seen.append(sorted(m for m in ("grader.checks.week3", "grader.report.html", "numpy") if m in sys.modules))
+    start(self)
+StudentSession.start = recording
+from grader.grading import grade_submission
+result = grade_submission(3, Path({str(ROOT / "solutions" / "week3")!r}), seed=1, out_dir={str(tmp_path)!r})
+assert result["score"] == result["max_score"], result["message"]
+print(seen)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "[[]]"
+    assert (tmp_path / "week3.html").is_file()
