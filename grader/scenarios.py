@@ -13,6 +13,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+from grader import clearance
 from grader import reference as ref
 from grader.checks import Context
 from grader.sandbox.errors import SandboxError
@@ -130,11 +131,9 @@ def path_length(trace: Trace) -> float:
 def min_clearance(trace: Trace, world: World, spec, every: int = 3) -> float | None:
     """The smallest gap (m) between the robot's base plate and any obstacle, at every `every`-th step
     (and the last); 0 once they touch. None for a world without obstacles."""
-    from shapely.geometry import MultiPolygon, Polygon
-
     if not world.obstacles:
         return None
-    obstacles = MultiPolygon([Polygon(p) for p in world.obstacles])
+    obstacles = [clearance.Shape(p) for p in world.obstacles]
     plate = spec.base_plate
     s = trace.steps
     rows = list(range(0, len(s["x"]), every)) + [len(s["x"]) - 1]
@@ -142,8 +141,10 @@ def min_clearance(trace: Trace, world: World, spec, every: int = 3) -> float | N
     for k in rows:
         x, y, th = s["x"][k], s["y"][k], s["theta"][k]
         c, si = math.cos(th), math.sin(th)
-        body = Polygon([(x + c * px - si * py, y + si * px + c * py) for px, py in plate])
-        gap = min(gap, body.distance(obstacles))
+        body = clearance.Shape([(x + c * px - si * py, y + si * px + c * py) for px, py in plate])
+        for obstacle in obstacles:
+            if clearance.box_gap(body.box, obstacle.box) < gap:  # else it cannot be the nearest
+                gap = min(gap, clearance.distance(body, obstacle))
     return gap
 
 

@@ -277,10 +277,8 @@ def _variant(world: World, turn: int, of: int, mirror: bool) -> World:
     c, s = math.cos(theta), math.sin(theta)
     moved = []
     for poly in world.obstacles:
-        q = poly.copy()
-        if mirror:
-            q[:, 1] *= -1
-        moved.append(np.c_[c * q[:, 0] - s * q[:, 1], s * q[:, 0] + c * q[:, 1]])
+        q = [(x, -y) if mirror else (x, y) for x, y in poly]
+        moved.append([(c * x - s * y, s * x + c * y) for x, y in q])
     label = f"week-4 world{' mirrored' if mirror else ''}, turned {360 * turn / of:g} degrees"
     return World(label, moved)
 

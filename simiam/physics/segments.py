@@ -11,8 +11,6 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
 
-import numpy as np
-
 # Bounding boxes are widened by this much before culling, so that rounding in the exact formula can never
 # report a crossing the cull has thrown away (coordinates are metres, a few units at most).
 CULL_PAD = 1e-9
@@ -42,7 +40,7 @@ def crossing(a: Edge, b: Edge) -> float | None:
     return None
 
 
-def polygon_edges(points: Sequence[Sequence[float]] | np.ndarray) -> list[Edge]:
+def polygon_edges(points: Sequence[Sequence[float]]) -> list[Edge]:
     """The closed polygon's edges: vertex k to vertex k+1, the last back to the first."""
     n = len(points)
     return [(float(points[k][0]), float(points[k][1]), float(points[(k + 1) % n][0]),
@@ -53,7 +51,7 @@ class ObstacleEdges:
     """The obstacles' edges, precomputed for fast culled tests: per polygon a padded bounding box and, per
     edge, (x3, y3, x43, y43, xmin, xmax, ymin, ymax) with the edge's own padded box."""
 
-    def __init__(self, obstacles: Sequence[np.ndarray | Sequence[Sequence[float]]]) -> None:
+    def __init__(self, obstacles: Sequence[Sequence[Sequence[float]]]) -> None:
         self.polygons: list[PolygonBox] = []
         self.edges: list[list[Edge]] = []
         for poly in obstacles:

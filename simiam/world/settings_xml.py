@@ -27,8 +27,6 @@ from importlib import resources
 from pathlib import Path
 from xml.parsers import expat
 
-import numpy as np
-
 from simiam.physics.transform import transform_point
 from simiam.world.world import World
 
@@ -157,7 +155,7 @@ def parse_settings(path: Path, text: str | None = None, name: str | None = None)
         points = [(rd.number(pt, "x"), rd.number(pt, "y")) for pt in geom.findall("point")]
         if len(points) < 3:
             raise rd.error(geom, f"obstacle {k} has {len(points)} point(s); a polygon needs at least 3")
-        obstacles.append(np.array([transform_point(pose, px, py) for px, py in points], dtype=float))
+        obstacles.append([transform_point(pose, px, py) for px, py in points])
     goals = root.findall("goal")
     if len(goals) > 1:
         raise rd.error(root, f"{len(goals)} <goal> elements, expected at most one")

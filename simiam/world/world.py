@@ -3,37 +3,32 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
-
 Pose = tuple[float, float, float]
+Polygon = tuple[tuple[float, float], ...]  # world-frame vertices (x, y), closed implicitly
 
 
 @dataclass
 class World:
-    """Named obstacles (each an (n, 2) float array of world-frame vertices, closed implicitly),
-    robot start poses (x, y, theta), and an optional goal (x, y).
+    """Named obstacles (each a tuple of at least 3 world-frame vertices (x, y) as floats, closed
+    implicitly), robot start poses (x, y, theta), and an optional goal (x, y).
 
-    Build one from code (`World("mine", [np.array([[0, 0], [1, 0], [1, 1]])])`) or from a settings.xml
-    file with `simiam.world.load_world`.
+    Build one from code (`World("mine", [[(0, 0), (1, 0), (1, 1)]])`; an (n, 2) numpy array works too)
+    or from a settings.xml file with `simiam.world.load_world`. Plain floats, not numpy arrays: the
+    grader's process never needs numpy's import (0.1-0.2 s, docs/performance.md).
     """
 
     name: str
-    obstacles: list[np.ndarray] = field(default_factory=list)
+    obstacles: list[Polygon] = field(default_factory=list)  # type: ignore[assignment]
     starts: list[Pose] = field(default_factory=lambda: [(0.0, 0.0, 0.0)])
     goal: tuple[float, float] | None = None
     source: Path | None = None
 
     def __post_init__(self) -> None:
-        polys = []
-        for i, poly in enumerate(self.obstacles):
-            a = np.array(poly, dtype=float)
-            if a.ndim != 2 or a.shape[1] != 2 or a.shape[0] < 3:
-                raise ValueError(f"obstacle {i + 1} of world {self.name!r} must be at least 3 (x, y) points")
-            polys.append(a)
-        self.obstacles = polys
+        self.obstacles = [_polygon(poly, i, self.name) for i, poly in enumerate(self.obstacles)]
         self.starts = [tuple(float(c) for c in s) for s in self.starts]  # type: ignore[misc]
 
     @property
@@ -43,4 +38,15 @@ class World:
 
     def to_json(self) -> dict:
         """The trace's `world` object: name and obstacle vertices as plain lists."""
-        return {"name": self.name, "obstacles": [p.tolist() for p in self.obstacles]}
+        return {"name": self.name, "obstacles": [[list(v) for v in p] for p in self.obstacles]}
+
+
+def _polygon(poly: Sequence[Sequence[float]], i: int, world: str) -> Polygon:
+    """An obstacle as a tuple of (x, y) float pairs; ValueError unless it is at least 3 such points."""
+    try:
+        points = tuple((float(x), float(y)) for x, y in poly)
+    except (TypeError, ValueError):
+        points = ()
+    if len(points) < 3:
+        raise ValueError(f"obstacle {i + 1} of world {world!r} must be at least 3 (x, y) points")
+    return points

@@ -62,10 +62,11 @@ def test_packaged_worlds():
     # week 4's L: x[-0.2, 0.4] x y[0.2, 0.4] and x[-0.4, -0.2] x y[0.2, 0.8]
     l1, l2 = load_world("week4").obstacles[:2]
     def bbox(p):
-        return [p[:, 0].min(), p[:, 0].max(), p[:, 1].min(), p[:, 1].max()]
+        xs, ys = [v[0] for v in p], [v[1] for v in p]
+        return [min(xs), max(xs), min(ys), max(ys)]
     assert np.allclose(bbox(l1), [-0.2, 0.4, 0.2, 0.4])
     assert np.allclose(bbox(l2), [-0.4, -0.2, 0.2, 0.8], atol=1e-5)
-    assert l2[1, 0] != -0.2  # theta is the literal 1.5708, not pi/2
+    assert l2[1][0] != -0.2  # theta is the literal 1.5708, not pi/2
 
 
 def test_world_from_code_rejects_degenerate_polygons():
