@@ -1,5 +1,5 @@
 """Where the time of `grade weekN --solutions` goes: imports, splicing, worker start, round trips, the
-Hypothesis engine, the scenarios' physics, the report. The measurements behind docs/performance.md.
+property cases, the scenarios' physics, the report. The measurements behind docs/performance.md.
 
     python benchmarks/grade_profile.py [--week 3] [--sandbox auto|bwrap|subprocess]
 
@@ -124,7 +124,7 @@ def instrument(week: int) -> Timers:
     patch(grading, "write_outputs", timers, "report: JSON and HTML")
     patch(properties, "run_property", timers, "property checks (all)", worker=True)
     patch(scenarios, "run", timers, "scenario runs (all)", worker=True)
-    patch(scenarios, "min_clearance", timers, "scenario metric: min_clearance (shapely)")
+    patch(scenarios, "min_clearance", timers, "scenario metric: min_clearance (pure Python)")
     return timers
 
 
@@ -148,12 +148,12 @@ def print_phases(timers: Timers, wall: float, cpu: float, worker_cpu: float) -> 
          wk["worker start and load"]),
         ("property checks", w[prop], c[prop], wk[prop]),
         ("  probe round trips", w[probes], c[probes], None),
-        ("  the rest: Hypothesis engine, reference maths", w[prop] - w[probes], c[prop] - c[probes], None),
+        ("  the rest: drawing cases, reference maths", w[prop] - w[probes], c[prop] - c[probes], None),
         ("scenario runs", w[scen], c[scen], wk[scen]),
         ("  brain_step round trips", w[steps], c[steps], None),
         ("  the rest: physics, trace, metrics", w[scen] - w[steps], c[scen] - c[steps], None),
-        ("  of which min_clearance (shapely)", w["scenario metric: min_clearance (shapely)"],
-         c["scenario metric: min_clearance (shapely)"], None),
+        ("  of which min_clearance (pure Python)", w["scenario metric: min_clearance (pure Python)"],
+         c["scenario metric: min_clearance (pure Python)"], None),
         ("report: JSON and HTML", w["report: JSON and HTML"], c["report: JSON and HTML"], None),
     ]
     top = [r for r in rows if not r[0].startswith("  ")]
@@ -286,8 +286,8 @@ def main(argv: list[str] | None = None) -> int:
     cases = sum(r[1] for r in rows)
     engine, direct = sum(r[2] for r in rows), sum(r[3] for r in rows)
     print(f"3. the week's visible property checks with probes answered in this process (no round trips): "
-          f"{len(rows)} checks, {cases} cases; under Hypothesis {engine * 1000:.0f} ms CPU, the same cases "
-          f"called directly {direct * 1000:.0f} ms CPU: the engine costs "
+          f"{len(rows)} checks, {cases} cases; under run_property {engine * 1000:.0f} ms CPU, the same cases "
+          f"called directly {direct * 1000:.0f} ms CPU: drawing the cases costs "
           f"{(engine - direct) / max(1, cases) * 1e6:.0f} us per case")
     per_h, per_r = hypothesis_per_case()
     print(f"   Hypothesis per case (CPU), no-op property of two floats, 25 examples: {per_h * 1e6:.0f} us; "
