@@ -42,12 +42,9 @@ def distance(a: Shape, b: Shape) -> float:
         return 0.0
     if _inside(a.points[0], b) or _inside(b.points[0], a):
         return 0.0
-    best = math.inf
-    for p, q in a.edges:
-        for r, s in b.edges:
-            best = min(best, point_to_segment(p, r, s), point_to_segment(q, r, s),
-                       point_to_segment(r, p, q), point_to_segment(s, p, q))
-    return best
+    # every end point of an edge is a vertex: each vertex of one against each edge of the other
+    best = min(point_to_segment(p, r, s) for p in a.points for r, s in b.edges)
+    return min(best, min(point_to_segment(p, r, s) for p in b.points for r, s in a.edges))
 
 
 def point_to_segment(p: Point, a: Point, b: Point) -> float:
