@@ -17,7 +17,7 @@ from __future__ import annotations
 import json
 import random
 import zlib
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
 from grader.checks import Context, Mismatch, Outcome
@@ -73,7 +73,7 @@ def case_seed(ctx: Context, check_id: str) -> int:
 def run_property(
     ctx: Context,
     check_id: str,
-    domains: dict[str, Domain],
+    domains: Mapping[str, Domain],
     case: Case,
     *,
     examples: Iterable[dict[str, Any]] = (),
@@ -118,7 +118,7 @@ def run_property(
     return _failed(ctx, check_id, words, inputs)  # Hypothesis's search missed it: the drawn case as it is
 
 
-def _first_failure(ctx: Context, check_id: str, domains: dict[str, Domain], case: Case,
+def _first_failure(ctx: Context, check_id: str, domains: Mapping[str, Domain], case: Case,
                    max_examples: int) -> tuple[dict[str, Any], str] | Outcome | None:
     """Run the drawn cases until one fails: None if all pass, (inputs, words) for a wrong answer or a
     student exception, or the Outcome of a timeout or dead worker."""
@@ -140,7 +140,7 @@ def _first_failure(ctx: Context, check_id: str, domains: dict[str, Domain], case
     return None
 
 
-def _search(ctx: Context, check_id: str, strategies: dict[str, Any], case: Case, max_examples: int,
+def _search(ctx: Context, check_id: str, strategies: Mapping[str, Any], case: Case, max_examples: int,
             passed: str) -> Outcome:
     """Hypothesis's seeded search over `strategies`, shrinking the failure it finds."""
     from hypothesis import HealthCheck, Phase, Verbosity, given, seed, settings

@@ -22,7 +22,7 @@ class World:
     """
 
     name: str
-    obstacles: list[Polygon] = field(default_factory=list)  # type: ignore[assignment]
+    obstacles: Sequence[Sequence[Sequence[float]]] = field(default_factory=list)  # stored as Polygon
     starts: list[Pose] = field(default_factory=lambda: [(0.0, 0.0, 0.0)])
     goal: tuple[float, float] | None = None
     source: Path | None = None
