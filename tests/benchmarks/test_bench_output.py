@@ -76,7 +76,7 @@ def test_grade_profile_prints_every_phase():
     for row in ("splice (skeleton check included)", "worker start and load", "property checks",
                 "probe round trips", "scenario runs", "report: JSON and HTML", "total grade_submission"):
         assert re.search(rf"^ +{re.escape(row)} +-?\d+ ", out, re.M), row
-    assert re.search(r"the engine costs -?\d+ us per case", out)
+    assert re.search(r"drawing the cases costs -?\d+ us per case", out)
 
 
 def test_grade_and_batch_bench_say_when_the_sandbox_asked_for_is_missing():
