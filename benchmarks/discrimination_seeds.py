@@ -16,7 +16,8 @@ import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT / "tests" / "grader"), str(ROOT / "tests")]
+# ROOT first, or tests/ (which holds a folder named grader) would shadow the grader package
+sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "grader"), str(ROOT / "tests")]
 
 from mistakes import DATA, read_mistake  # noqa: E402
 from wrong_submissions import build, week_of  # noqa: E402
