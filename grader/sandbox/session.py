@@ -81,7 +81,7 @@ class StudentSession:
         if self._worker is None and self._load_death is None:
             try:
                 self._spawn()
-            except (SandboxUnavailable, StudentTimeout):
+            except Exception:  # noqa: BLE001 - the first call spawns again and raises it where it is handled
                 self._spawned = None
 
     def load(self) -> dict:
@@ -156,9 +156,13 @@ class StudentSession:
         began = time.monotonic()
         if self._work is None:
             self._uid = isolation.pick_uid()
-            self._work = WorkCopy(self.spliced_dir, self._uid)
-            # the only simiam/grader the worker can import, next to the copy (removed with it)
-            self._library = build_library(self._work.path.parent / "library")
+            work = WorkCopy(self.spliced_dir, self._uid)
+            try:  # the only simiam/grader the worker can import, next to the copy (removed with it)
+                self._library = build_library(work.path.parent / "library")
+            except BaseException:  # kept half-built, the next start would run without a library
+                work.remove()
+                raise
+            self._work = work
         rlimits = self.limits.for_worker(self.limits.total_seconds - self.seconds_used) \
             if has_module("resource") else None  # none to set: the isolation note says "local check only"
         plan = isolation.plan_worker(

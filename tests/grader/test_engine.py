@@ -193,3 +193,17 @@ print(sorted(m for m in ("numpy", "shapely", "hypothesis") if m in sys.modules))
     assert out.returncode == 0, out.stderr
     assert out.stdout.split("\n")[:2] == ["[[]]", "[]"], out.stdout
     assert (tmp_path / "week3.html").is_file()
+
+
+def test_a_worker_that_cannot_even_be_spawned_is_a_grader_error_not_a_crash(monkeypatch) -> None:
+    """The worker is spawned before the checks run (StudentSession.start); a failure there (here the
+    library copy hits a full disk) is raised by the first call and reported like any grader fault."""
+    import grader.sandbox.session as session
+
+    def full_disk(into: Path) -> Path:
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(session, "build_library", full_disk)
+    result = grade_submission(3, ROOT / "solutions" / "week3", seed=1)
+    assert result["status"] == "invalid" and result["score"] == 0
+    assert "bug in the grader" in result["message"] and "OSError" in result["message"]
