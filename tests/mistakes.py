@@ -18,6 +18,7 @@ from grader.platforms.wrong_versions import (  # noqa: F401 (re-exported for the
     Mistake,
     MistakeError,
     apply_hunks,
+    apply_mistake,
     read_mistake,
 )
 
@@ -42,17 +43,11 @@ def build(kind: str, name: str, into: Path, week: int | None = None, folder_name
     elif week is None or not (DATA / kind / name).is_dir():
         raise MistakeError(f"no {patch.name} (or folder with a week) in tests/data/{kind}")
     folder = into / (folder_name or name)
+    if mistake is not None:
+        return apply_mistake(patch, ROOT / "solutions", folder)[1]
     shutil.copytree(ROOT / "solutions" / f"week{week}", folder, ignore=shutil.ignore_patterns("__pycache__"))
-    if mistake is None:
-        for path in (DATA / kind / name).glob("*.py"):
-            shutil.copy(path, folder / path.name)
-        return folder
-    for file, hunks in mistake.files.items():
-        target = folder / file
-        if not target.exists():
-            raise MistakeError(f"{patch}: solutions/week{week}/{file} does not exist")
-        where = f"{patch.name} on solutions/week{week}/{file}"
-        target.write_text(apply_hunks(target.read_text(), hunks, where))
+    for path in (DATA / kind / name).glob("*.py"):
+        shutil.copy(path, folder / path.name)
     return folder
 
 

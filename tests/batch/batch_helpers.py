@@ -107,3 +107,18 @@ def remove_deep_chain(folder: Path) -> None:
         if (folder / "d_up" / "d").is_dir():
             os.rename(folder / "d_up" / "d", folder / "d")
         os.rmdir(folder / "d_up")
+
+
+class StopAfterOne:
+    """An executor stopped (Ctrl-C) right after its first student: the rest keep their older results
+    (an interrupted regrade)."""
+
+    def describe(self) -> dict:
+        return {"executor": "stop-after-one"}
+
+    def run(self, grade_fn, tasks, on_done) -> None:
+        import batch_fake_grader
+
+        task = next(iter(tasks))
+        on_done(task, {"status": "ok", "value": batch_fake_grader.fake_grade(task), "seconds": 0.0})
+        raise KeyboardInterrupt

@@ -15,7 +15,7 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from batch_helpers import CASES, hostile, make_class, remove_deep_chain
+from batch_helpers import CASES, StopAfterOne, hostile, make_class, remove_deep_chain
 
 from grader.batch import names, pool, runner, store, submissions, zips
 from grader.batch.names import SubmissionRefused, student_stem
@@ -204,20 +204,6 @@ def test_the_grade_command_leaves_the_batch_seed_unset() -> None:
 
 
 # ---- issue 13 item 12: an interrupted regrade never mixes two gradings ---------------------------------
-
-class StopAfterOne:
-    """An executor stopped (Ctrl-C) right after its first student."""
-
-    def describe(self) -> dict:
-        return {"executor": "stop-after-one"}
-
-    def run(self, grade_fn, tasks, on_done) -> None:
-        import batch_fake_grader
-
-        task = next(iter(tasks))
-        on_done(task, {"status": "ok", "value": batch_fake_grader.fake_grade(task), "seconds": 0.0})
-        raise KeyboardInterrupt
-
 
 def test_an_interrupted_regrade_never_mixes_two_gradings(tmp_path: Path) -> None:
     make_class(tmp_path / "class", {"a": "score 1", "b": "score 2", "c": "score 3"})

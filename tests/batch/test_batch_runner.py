@@ -15,7 +15,7 @@ import time
 from pathlib import Path
 
 import pytest
-from batch_helpers import HERE, make_class, make_zip
+from batch_helpers import HERE, StopAfterOne, make_class, make_zip
 
 from grader.batch import cache, pool, runner
 from grader.batch.runner import BatchError, BatchOptions, run_batch
@@ -227,20 +227,6 @@ def test_a_zip_of_every_week_is_graded_from_the_batch_weeks_folder(tmp_path: Pat
     run_batch(options(tmp_path), grade_fn=FAKE)
     result = json.loads((tmp_path / "out" / "ann.json").read_text())
     assert result["batch"]["root"] == "assignments/week3" and result["score"] == 7.0
-
-
-class StopAfterOne:
-    """An executor stopped (Ctrl-C) right after its first student: the rest keep their older results."""
-
-    def describe(self) -> dict:
-        return {"executor": "stop-after-one"}
-
-    def run(self, grade_fn, tasks, on_done) -> None:
-        import batch_fake_grader
-
-        task = next(iter(tasks))
-        on_done(task, {"status": "ok", "value": batch_fake_grader.fake_grade(task), "seconds": 0.0})
-        raise KeyboardInterrupt
 
 
 def test_results_of_an_older_grading_stay_out_of_the_class_files(tmp_path: Path) -> None:
