@@ -26,6 +26,7 @@ from grader.sandbox.errors import SandboxError
 from grader.sandbox.limits import Limits
 from grader.sandbox.output import cut_middle
 from grader.sandbox.session import StudentSession
+from simiam.course.shipped import files_to_write, missing_note, shipped_version
 
 DEFAULT_SEED = 2014
 ROOT = Path(__file__).resolve().parents[1]
@@ -99,18 +100,6 @@ def pristine_stubs(week: int, into: Path) -> Path:
         raise CourseFilesMissing(str(exc)) from None
 
 
-def _shipped_version(week: int, name: str) -> str | None:
-    """The file as the course ships it in week `week` (earlier weeks' blocks filled in), where the
-    instructor's solutions/ is at hand (a checkout, official grading); None in a student's installation,
-    whose package holds no answers."""
-    from simiam.course.stubs import stub_text
-
-    solution = ROOT / "solutions" / f"week{week}" / name
-    if not solution.is_file():
-        return None
-    return stub_text(week, solution.read_text(encoding="utf-8"), name)[0]
-
-
 def _splice(week: int, submission: Path, tmp: Path) -> tuple[Path, dict[str, list[str]], list[str]]:
     """Splice into pristine stubs: (spliced folder, problems by file, notices)."""
     from simiam.course.splice import splice_folder
@@ -122,31 +111,17 @@ def _splice(week: int, submission: Path, tmp: Path) -> tuple[Path, dict[str, lis
     for name, res in report.files.items():
         if res.missing and name in files_to_write(week):
             problems.setdefault(name, []).append(f"{name} is missing from your submission")
-        elif res.missing and (shipped := _shipped_version(week, name)) is not None:
-            (spliced / name).write_text(shipped, encoding="utf-8")
-            notices.append(
-                f"{name} is missing from your submission: you write nothing in it this week, so the version "
-                "the course ships was used"
-            )
         elif res.missing:
-            notices.append(
-                f"{name} is missing from your submission: you write nothing in it this week, but the course "
-                "ships it with earlier weeks' code filled in, which this installation does not hold (it "
-                f"holds no answers), so its blocks were left empty: copy {name} from your week{week} handout"
-            )
+            shipped = shipped_version(week, name, ROOT)
+            if shipped is not None:
+                (spliced / name).write_text(shipped, encoding="utf-8")
+            notices.append(missing_note(week, name, shipped is not None))
         problems.setdefault(name, []).extend(f"{e} (the stub's code was used instead)" for e in res.errors)
         notices.extend(f"{edit} (edits outside the code blocks are not run)" for edit in res.outside_edits)
         if not problems[name]:
             del problems[name]
     notices.extend(f"{name}: not part of the assignment (ignored)" for name in report.extra_files)
     return spliced, problems, notices
-
-
-def files_to_write(week: int) -> set[str]:
-    """The files with a code block that is new in `week` (the others ship complete and may be missing)."""
-    from simiam.course.placeholders import PLACEHOLDERS
-
-    return {p.file for p in PLACEHOLDERS if p.week == week}
 
 
 def _load_problems(week: int, loaded: dict) -> dict[str, list[str]]:

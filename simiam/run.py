@@ -12,7 +12,9 @@ from __future__ import annotations
 
 import argparse
 import math
+import shutil
 import sys
+import tempfile
 from pathlib import Path
 
 from simiam.control.local_brain import LocalBrain
@@ -71,7 +73,42 @@ def main(args: argparse.Namespace) -> int:
 
     for note in outside_edit_notes(week, folder):
         print(f"warning: {note}", file=sys.stderr)
-    sub = load_submission(folder, week)
+    with tempfile.TemporaryDirectory(prefix="simiam-run-") as tmp:
+        run_folder, notes = fill_missing_files(week, folder, Path(tmp))
+        for note in notes:
+            print(f"warning: {note}", file=sys.stderr)
+        return _run(args, week, folder, run_folder, world, seconds)
+
+
+def fill_missing_files(week: WeekConfig, folder: Path, tmp: Path) -> tuple[Path, list[str]]:
+    """`folder`, or a copy of it under `tmp` with the files the student writes nothing in this week filled
+    in where they are missing, as `grade` does; and what to tell the student about each."""
+    from simiam.course.shipped import files_to_write, missing_note, shipped_version
+    from simiam.course.skeletons import SkeletonsMissing, skeleton_files
+
+    try:
+        skeletons = skeleton_files(week.number)
+    except SkeletonsMissing:
+        return folder, []
+    missing = [name for name in sorted(skeletons)
+               if name not in files_to_write(week.number) and not (folder / name).exists()]
+    if not missing:
+        return folder, []
+    copy = tmp / folder.name
+    shutil.copytree(folder, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    notes = []
+    for name in missing:
+        shipped = shipped_version(week.number, name)
+        (copy / name).write_text(shipped if shipped is not None else skeletons[name], encoding="utf-8")
+        notes.append(missing_note(week.number, name, shipped is not None))
+    return copy, notes
+
+
+def _run(args: argparse.Namespace, week: WeekConfig, folder: Path, run_folder: Path, world, seconds: float
+         ) -> int:
+    """The run itself, on `run_folder` (the student's folder, or its copy with missing files filled in);
+    messages name the student's own `folder`."""
+    sub = load_submission(run_folder, week)
     if not sub.ok:
         print(f"Your {week.name} code in {folder} could not be loaded:", file=sys.stderr)
         for err in sub.errors:
@@ -84,11 +121,11 @@ def main(args: argparse.Namespace) -> int:
             brain = LocalBrain(sub, week, start=start)
             sim = Simulator(world, brain, week.spec, dt=args.dt, start=start)
     except StepTimeout as exc:
-        return _fail(_stuck(exc, folder, "while setting up the supervisor"), 1)
+        return _fail(_stuck(exc, run_folder, "while setting up the supervisor"), 1)
     except BaseException as exc:  # noqa: BLE001 - the student's __init__ may raise anything, sys.exit too
         if isinstance(exc, KeyboardInterrupt):
             raise
-        return _fail(_student_error(exc, folder, "while setting up the supervisor"), 1)
+        return _fail(_student_error(exc, run_folder, "while setting up the supervisor"), 1)
 
     trace = sim.new_trace()
     sup = brain.supervisor
@@ -105,12 +142,12 @@ def main(args: argparse.Namespace) -> int:
             error = f"{folder.name}: your code returned an invalid command at t = {sim.t:.3f} s: {exc}"
             break
         except StepTimeout as exc:
-            error = _stuck(exc, folder, f"at t = {sim.t:.3f} s")
+            error = _stuck(exc, run_folder, f"at t = {sim.t:.3f} s")
             break
         except BaseException as exc:  # noqa: BLE001 - the student's exception (sys.exit too); keep the trace
             if isinstance(exc, KeyboardInterrupt):
                 raise
-            error = _student_error(exc, folder, f"at t = {sim.t:.3f} s")
+            error = _student_error(exc, run_folder, f"at t = {sim.t:.3f} s")
             break
         add_row(trace, rec)
         if rec.collided:

@@ -55,3 +55,23 @@ def test_edits_outside_the_blocks_are_warned_about(tmp_path: Path, capsys) -> No
     assert "warning: qb_supervisor.py" in err and "grade runs only the code blocks" in err
     graded = grade_submission(3, folder, seed=1, only="week3.pid.memory")
     assert any(n.startswith("qb_supervisor.py") for n in graded["notices"])
+
+
+def test_a_missing_shipped_file_is_filled_in_and_named(tmp_path: Path, capsys) -> None:
+    # week 3 ships differential_drive.py and go_to_angle.py complete: a folder without them still runs
+    # (with the versions the course ships, from the checkout's solutions/), as grade grades it
+    folder = mistakes.build("submissions", "week3_edit_outside_blocks", tmp_path, 3, "week3")
+    (folder / "differential_drive.py").unlink()
+    (folder / "go_to_angle.py").unlink()
+    assert main(_args(folder, tmp_path / "out", seconds=0.5)) == 0
+    err = capsys.readouterr().err
+    assert "warning: differential_drive.py is missing from your submission" in err
+    assert "warning: go_to_angle.py is missing from your submission" in err
+    assert not (folder / "differential_drive.py").exists()   # the student's folder is not written to
+
+
+def test_a_missing_file_to_write_is_still_a_load_error(tmp_path: Path, capsys) -> None:
+    folder = mistakes.build("submissions", "week3_edit_outside_blocks", tmp_path, 3, "week3")
+    (folder / "go_to_goal.py").unlink()
+    assert main(_args(folder, tmp_path / "out", seconds=0.5)) == 1
+    assert "could not be loaded" in capsys.readouterr().err
