@@ -3,8 +3,9 @@
     grade package gradescope week3 --out autograder.zip [--seed N] [--hidden-visibility after_published]
 
 The zip holds, at its root (Gradescope's autograder specification): `setup.sh`, `run_autograder`,
-`config.json`, `dist/simiam-*.whl` (this checkout's package) and `secret/` (the seed and the week's hidden
-set, closed to every user but root by setup.sh). Gradescope unpacks it into /autograder/source.
+`config.json`, `dist/simiam-*.whl` (this checkout's package), `handout/` (the week's handout: it fills in a
+file the student writes nothing in this week and did not upload) and `secret/` (the seed and the week's
+hidden set, closed to every user but root by setup.sh). Gradescope unpacks it into /autograder/source.
 
     python -m grader.platforms.gradescope run --root /autograder     # run_autograder does this
     python -m grader.platforms.gradescope check --root /autograder   # setup.sh does this
@@ -31,6 +32,7 @@ from grader.batch.exports import gradescope_result
 from grader.batch.store import write_json
 from grader.platforms.archive import write_zip
 from grader.platforms.bundle import stage_common
+from grader.platforms.handout import copy_handout
 from grader.platforms.official import (
     BundleBroken,
     SubmissionRefused,
@@ -52,6 +54,8 @@ def build(week: int, out: Path, course: Path, seed: int, hidden_visibility: str 
     with tempfile.TemporaryDirectory(prefix="simiam-gradescope-") as tmp:
         stage = Path(tmp)
         wheel, config = stage_common(week, course, seed, hidden_visibility, stage)
+        # the week's handout: what fills in a file the student writes nothing in and did not upload
+        copy_handout(week, course, stage / "handout")
         shutil.copy(TEMPLATES / "gradescope_setup.sh", stage / "setup.sh")
         shutil.copy(TEMPLATES / "gradescope_run_autograder", stage / "run_autograder")
         files = {p.relative_to(stage).as_posix(): p.read_bytes()
@@ -128,7 +132,9 @@ def run(root: Path) -> int:
         config = read_config(root / "source" / "config.json")
         secret = read_secret(root / "source" / "secret")
         try:
-            result = grade_upload(root / "submission", secret)
+            handout = root / "source" / "handout"
+            result = grade_upload(root / "submission", secret,
+                                  fill_from=handout if handout.is_dir() else None)
         except SubmissionRefused as refused:
             write_json(out, refused_json(str(refused), config))
             print(f"refused: {refused}")

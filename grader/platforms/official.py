@@ -98,17 +98,23 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None) ->
     Returns the contract's result; a refused upload (no course files, hostile zip, ...) raises
     SubmissionRefused with the reason to show the student."""
     from grader.grading import grade_submission
+    from simiam.course.shipped import files_to_write, missing_note
 
     # The hidden checks read their data from $SIMIAM_HIDDEN: point it at the secret, never the package.
     os.environ["SIMIAM_HIDDEN"] = str(secret.hidden_dir)
+    filled = []
     with tempfile.TemporaryDirectory(prefix="simiam-upload-") as tmp:
         folder = collect(upload, secret.week, Path(tmp) / f"week{secret.week}")
         if fill_from is not None:
+            # only the files the student writes nothing in this week: a missing file to write is named as
+            # missing by the grader, not silently replaced by its placeholder
             for path in sorted(fill_from.glob("*.py")):
-                if not (folder / path.name).exists():
+                if not (folder / path.name).exists() and path.name not in files_to_write(secret.week):
                     (folder / path.name).write_bytes(path.read_bytes())
+                    filled.append(path.name)
         result = grade_submission(secret.week, folder, seed=secret.seed, hidden=True, sandbox="auto")
     result["submission"] = "your upload"     # not the grader's temporary path
+    result.setdefault("notices", []).extend(missing_note(secret.week, name, True) for name in filled)
     return result
 
 

@@ -33,7 +33,11 @@ def test_the_zip_has_the_scripts_at_its_root_and_the_secret_closed(gradescope_zi
     assert modes["setup.sh"] == modes["run_autograder"] == 0o755
     assert all(mode == 0o600 for name, mode in modes.items() if name.startswith("secret/"))
     assert [n for n in names if n.startswith("dist/")] == [n for n in names if n.endswith(".whl")]
-    assert not any(n.startswith("solutions") or n.endswith(".py") for n in names)
+    # the only Python files are the week's handout (checked for leaks when it is copied in)
+    assert not any(n.startswith("solutions") or (n.endswith(".py") and not n.startswith("handout/"))
+                   for n in names)
+    assert {n for n in names if n.startswith("handout/")} == {
+        f"handout/{p.name}" for p in (ROOT / "assignments" / "week3").iterdir() if p.suffix in (".py", ".md")}
 
 
 def test_setup_installs_the_wheel_and_leaves_the_secret_to_root(autograder):
@@ -153,6 +157,20 @@ def test_hidden_checks_get_the_visibility_the_instructor_chose(choice: str):
 ], ids=["visibility", "nan", "status-and-no-score", "sum", "format", "unknown-key"])
 def test_the_spec_validator_catches_what_gradescope_rejects(broken: dict):
     assert gradescope_violations(broken)
+
+
+def test_a_file_with_nothing_to_write_this_week_may_be_left_out(autograder, tmp_path):
+    # week 3 ships differential_drive.py (with week 2's uni_to_diff filled in) and go_to_angle.py complete
+    def upload(folder: Path) -> None:
+        _loose(ROOT / "solutions" / "week3", folder)
+        (folder / "differential_drive.py").unlink()
+        (folder / "go_to_angle.py").unlink()
+
+    results, _ = autograder.grade(upload)
+    assert gradescope_violations(results) == []
+    assert results["score"] == 12.5
+    assert "differential_drive.py is missing from your submission" in results["output"]
+    assert "the version the course ships was used" in results["output"]
 
 
 def _loose(source: Path, folder: Path) -> None:
