@@ -302,7 +302,7 @@ class Simulator:
         """Move and run the brain (week 1: the brain first); returns the validated command."""
         self._k += 1
         t = self._k * self.dt
-        if self.spec.week == 1:
+        if self.spec.brain_first:
             command = self._think(t)
             self._move()
         else:

@@ -70,9 +70,9 @@ def loses_exactly(aims: frozenset[str]) -> Callable[[dict], str | None]:
 
 def has_coded_parts(week: int) -> bool:
     """True when the week introduces code blocks (week 1 only runs the simulator)."""
-    from simiam.course.placeholders import PLACEHOLDERS
+    from simiam.course.weeks import get_week
 
-    return any(p.week == week for p in PLACEHOLDERS)
+    return bool(get_week(week).blocks)
 
 
 def run_selfcheck(course: Path, weeks: list[int], wrong: Path | None = None, seed: int | None = None,

@@ -9,14 +9,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from simiam.course.placeholders import PLACEHOLDERS
+from simiam.course.weeks import get_week
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def files_to_write(week: int) -> set[str]:
     """The files with a code block that is new in `week` (the others ship complete and may be missing)."""
-    return {p.file for p in PLACEHOLDERS if p.week == week}
+    return set(get_week(week).files_to_write)
 
 
 def shipped_version(week: int, name: str, root: Path = ROOT) -> str | None:

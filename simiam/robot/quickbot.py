@@ -53,12 +53,16 @@ class RobotSpec:
 
     `ir_mode` is "week2" (the week-2 divider: raw = round(500*V), clamped to [200, 1375]) or
     "week3" (raw = round(1000*V/3), clamped to [133, 917]). Speeds are wheel angular speeds in rad/s.
+    `brain_first`: each step runs the supervisor before it moves the robot (the original's week-1 order);
+    otherwise the robot first moves with last step's speeds. Each week declares its spec in
+    simiam/course/weeks/weekN.py.
     """
 
     week: int
     max_vel: float
     min_vel: float
     ir_mode: str
+    brain_first: bool = False
     wheel_radius: float = WHEEL_RADIUS
     wheel_base_length: float = WHEEL_BASE_LENGTH
     ticks_per_rev: int = TICKS_PER_REV
@@ -85,14 +89,7 @@ def limit_speeds(vel_r: float, vel_l: float, max_vel: float, min_vel: float) -> 
 
 
 def spec_for_week(week: int) -> RobotSpec:
-    """The QuickBot of course week `week` (1..4; later weeks use the week-4 robot).
+    """The QuickBot of course week `week`, as the week declares it (simiam/course/weeks/weekN.py)."""
+    from simiam.course.weeks import get_week
 
-    Week 1 uses the week-2 IR divider (the original's weeks 1 and 2 share `ir_distance_to_raw`).
-    """
-    if week < 1:
-        raise ValueError(f"no course week {week}: weeks start at 1")
-    if week <= 2:
-        return RobotSpec(week=week, max_vel=MAX_VEL_80RPM, min_vel=0.0, ir_mode="week2")
-    if week == 3:
-        return RobotSpec(week=week, max_vel=MAX_VEL_80RPM, min_vel=0.0, ir_mode="week3")
-    return RobotSpec(week=week, max_vel=MAX_VEL_130RPM, min_vel=MIN_VEL_30RPM, ir_mode="week3")
+    return get_week(week).spec

@@ -9,9 +9,10 @@ from pathlib import Path
 import pytest
 
 from simiam.course.blocks import BlockError, dedent_body, find_blocks, fingerprint
-from simiam.course.placeholders import PLACEHOLDERS, Placeholder, placeholder_for
+from simiam.course.placeholders import Placeholder, placeholder_for
 from simiam.course.splice import splice
 from simiam.course.stubs import ROOT, WEEKS, differences, generate, main, stub_text, write
+from simiam.course.weeks import all_blocks
 
 DATA = Path(__file__).parents[1] / "data" / "blocks"
 
@@ -106,7 +107,7 @@ def test_every_table_entry_is_used_in_its_week():
         for w, p in solution_files()
         for b in find_blocks(p.read_text(), p.name)
     }
-    for spec in PLACEHOLDERS:
+    for spec in all_blocks():
         assert (spec.week, *spec.key) in found, f"stale entry: {spec.key} (week {spec.week})"
 
 
@@ -170,7 +171,7 @@ def check_placeholder(spec: Placeholder) -> None:
     assert not missing, f"{spec.file} {spec.scope}: the placeholder does not set {sorted(missing)}"
 
 
-@pytest.mark.parametrize("spec", PLACEHOLDERS, ids=lambda s: f"{s.file}:{s.scope}:{s.occurrence}")
+@pytest.mark.parametrize("spec", all_blocks(), ids=lambda s: f"{s.file}:{s.scope}:{s.occurrence}")
 def test_placeholder_sets_what_the_code_after_it_reads(spec):
     check_placeholder(spec)
 

@@ -23,8 +23,8 @@ import pytest
 
 from grader.sandbox.isolation import bwrap_works
 from simiam.course.blocks import find_blocks
-from simiam.course.placeholders import PLACEHOLDERS
 from simiam.course.splice import splice
+from simiam.course.weeks import all_blocks
 
 REPO = Path(__file__).resolve().parents[2]
 pytestmark = pytest.mark.slow
@@ -217,7 +217,7 @@ def _solution_lines() -> dict[str, str]:
     """Every code line inside a block of solutions/ (normalised), with where it comes from; lines the
     course gives every student anyway (provided code outside the blocks, the placeholders' code) and bare
     keywords are left out."""
-    provided = {_norm(ln) for p in PLACEHOLDERS for ln in p.code.splitlines()}
+    provided = {_norm(ln) for p in all_blocks() for ln in p.code.splitlines()}
     for stub in REPO.glob("assignments/week*/*.py"):
         text = stub.read_text()
         inside = {n for b in find_blocks(text, stub.name) for n in range(b.start_line + 1, b.end_line)}

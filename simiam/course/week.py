@@ -1,0 +1,128 @@
+"""One week of the course, declared in one place: `Week`, and the supervisor settings a run starts from.
+
+Each week is a file `simiam/course/weeks/weekN.py` holding `WEEK = Week(...)`; everything that differs
+between weeks (the robot, the world, the student's files, the blocks new that week, the settings of a run,
+its length, the checks, the debug signals) is read from there, so adding a week is adding a file (see
+docs/design.md, "Adding a week"). This module imports nothing of the grader: the checks are named by their
+module path, as a string.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+from simiam.course.placeholders import Placeholder
+from simiam.robot.quickbot import RobotSpec
+
+# The settings a supervisor understands by name (Supervisor attributes); others go in `extra`.
+NAMED_SETTINGS = ("v", "goal", "d_stop", "theta_d", "state")
+
+
+@dataclass(frozen=True)
+class SupervisorSettings:
+    """What a run sets on the student's QBSupervisor before the first step (None: leave the student's value).
+
+    `v` forward speed (m/s), `goal` (x_g, y_g) in metres, `d_stop` arrival radius (m), `theta_d` the
+    heading of week 2 (rad), `state` the first controller's name. `extra` is open for later weeks'
+    settings (e.g. `{"d_at_obs": 0.15, "d_fw": 0.1}`) and for controller gains
+    (`{"go_to_goal": {"Kp": 4}}`), passed on by name as LocalBrain understands them.
+    """
+
+    v: float | None = None
+    goal: tuple[float, float] | None = None
+    d_stop: float | None = None
+    theta_d: float | None = None
+    state: str | None = None
+    extra: Mapping[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        clash = sorted(set(self.extra) & set(NAMED_SETTINGS))
+        if clash:
+            raise ValueError(f"SupervisorSettings: {', '.join(clash)} are fields, not extra settings")
+
+    def as_dict(self) -> dict[str, Any]:
+        """The settings LocalBrain / RemoteBrain take: the fields that are set, then `extra`."""
+        named = {name: getattr(self, name) for name in NAMED_SETTINGS if getattr(self, name) is not None}
+        return {**named, **dict(self.extra)}
+
+    def with_changes(self, **changes: Any) -> SupervisorSettings:
+        """These settings with some changed (named ones as fields, any other name into `extra`)."""
+        named = {k: v for k, v in changes.items() if k in NAMED_SETTINGS}
+        extra = {k: v for k, v in changes.items() if k not in NAMED_SETTINGS}
+        return replace(self, **named, extra={**dict(self.extra), **extra})
+
+
+@dataclass(frozen=True)
+class Week:
+    """Everything one week of the course declares. Instructors: one `WEEK = Week(...)` per week file.
+
+    - `number`, `title`: week N and what it is about; `name` ("weekN") is the folder name under
+      assignments/ and solutions/ and the world/command-line spelling.
+    - `spec`: the QuickBot of this week (dimensions, wheel limits, IR divider; `brain_first` for week 1).
+    - `world`: the packaged world (simiam/world/worlds/<world>.xml) that `simiam run` and the scenarios use.
+    - `student_files`: the files of the student's folder, in import order; `required_names`: per file, the
+      names it must define (dotted for methods), which the loader checks.
+    - `blocks`: the code blocks NEW this week (each a Placeholder: file, function, hint, placeholder code);
+      earlier weeks' blocks ship filled in. Their `week` is filled in from `number`.
+    - `settings`: the supervisor settings of a run (`simiam run` and the scenario checks' default);
+      `seconds`, `dt`, `start`: its length, time step and start pose, one value for `simiam run` and `grade`.
+    - `checks`: the module of this week's checks, as a dotted name (e.g. "grader.checks.week3"); it
+      defines CHECKS (and may declare PLOTS for the report).
+    - `debug_signals`: the names of the debug values the week's trace carries (u_ao, theta_g, ...).
+    - `summary`: the lines `simiam run` prints after the run, by name ("heading", "goal", "path", ...).
+    """
+
+    number: int
+    title: str
+    spec: RobotSpec
+    world: str
+    student_files: tuple[str, ...]
+    required_names: Mapping[str, tuple[str, ...]]
+    checks: str
+    blocks: tuple[Placeholder, ...] = ()
+    settings: SupervisorSettings = field(default_factory=SupervisorSettings)
+    seconds: float = 10.0
+    dt: float = 0.033
+    start: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    debug_signals: tuple[str, ...] = ()
+    summary: tuple[str, ...] = ("path",)
+
+    def __post_init__(self) -> None:
+        where = f"week {self.number}"
+        if not isinstance(self.number, int) or self.number < 1:
+            raise ValueError(f"Week: number must be a whole number from 1, got {self.number!r}")
+        if self.spec.week != self.number:
+            raise ValueError(f"{where}: its RobotSpec says week {self.spec.week}")
+        if not re.fullmatch(r"[A-Za-z_][\w.]*", self.checks):
+            raise ValueError(f"{where}: checks must be a module name like 'grader.checks.week{self.number}'")
+        unknown = sorted(set(self.required_names) - set(self.student_files))
+        if unknown:
+            raise ValueError(f"{where}: required_names of files that are not student files: {unknown}")
+        blocks = []
+        for block in self.blocks:
+            if block.week not in (0, self.number):
+                raise ValueError(f"{where}: block {block.file} {block.scope} says week {block.week}")
+            if block.file not in self.student_files:
+                raise ValueError(f"{where}: block in {block.file}, which is not a student file")
+            blocks.append(replace(block, week=self.number))
+        object.__setattr__(self, "blocks", tuple(blocks))
+        if len({b.key for b in self.blocks}) != len(self.blocks):
+            raise ValueError(f"{where}: a block is declared twice")
+
+    @property
+    def name(self) -> str:
+        """"week1", "week2", ...: the folder name under assignments/ and solutions/."""
+        return f"week{self.number}"
+
+    @property
+    def files_to_write(self) -> frozenset[str]:
+        """The files with a block new this week (the others ship complete and may be missing)."""
+        return frozenset(b.file for b in self.blocks)
+
+    @property
+    def default_settings(self) -> dict[str, Any]:
+        """`settings` as the dict LocalBrain takes (the old WeekConfig name, kept while callers move)."""
+        return self.settings.as_dict()

@@ -1,0 +1,75 @@
+"""The weeks of the course: one file per week, `weekN.py` holding `WEEK = Week(...)`, found by name.
+
+`get_week(3)` (or "3", "week3") returns week 3's declaration; `all_weeks()` every week in order;
+`week_numbers()` their numbers. Nothing lists the weeks by hand: a `weekN.py` in this package is a week of
+the course (see docs/design.md, "Adding a week"), so adding a week is adding a file.
+"""
+
+from __future__ import annotations
+
+import functools
+import importlib
+import pkgutil
+import re
+
+from simiam.course.placeholders import Placeholder
+from simiam.course.week import Week
+
+_WEEK_MODULE = re.compile(r"week([1-9][0-9]*)")
+
+
+@functools.cache
+def _registry() -> dict[int, Week]:
+    """Import every weekN module of this package; their WEEKs by number (checked against the file name)."""
+    found: dict[int, Week] = {}
+    for info in pkgutil.iter_modules(__path__):
+        match = _WEEK_MODULE.fullmatch(info.name)
+        if match is None:
+            continue
+        module = importlib.import_module(f"{__name__}.{info.name}")
+        week = getattr(module, "WEEK", None)
+        if not isinstance(week, Week):
+            raise TypeError(f"{module.__file__}: a week file must define WEEK = Week(...)")
+        if week.number != int(match.group(1)):
+            raise ValueError(f"{module.__file__}: declares week {week.number}, its file name says "
+                             f"week {match.group(1)}")
+        found[week.number] = week
+    return dict(sorted(found.items()))
+
+
+def refresh() -> None:
+    """Look for week files again (after one was added to this package's path, e.g. in a test)."""
+    _registry.cache_clear()
+
+
+def week_numbers() -> tuple[int, ...]:
+    """The numbers of the course's weeks, in order: (1, 2, 3, 4, ...)."""
+    return tuple(_registry())
+
+
+def all_weeks() -> tuple[Week, ...]:
+    """Every week's declaration, in order."""
+    return tuple(_registry().values())
+
+
+def get_week(week: int | str) -> Week:
+    """The declaration of a week, given as 3, "3" or "week3"; a ValueError names the weeks there are."""
+    text = str(week).strip().lower().removeprefix("week").strip()
+    weeks = _registry()
+    if isinstance(week, bool) or not text.isdigit() or int(text) not in weeks:
+        listed = ", ".join(f"week{n}" for n in weeks)
+        raise ValueError(f"no such week: {week!r} (the course has {listed})")
+    return weeks[int(text)]
+
+
+def all_blocks() -> tuple[Placeholder, ...]:
+    """The code blocks of every week (each new in its week), in week order."""
+    return tuple(block for week in all_weeks() for block in week.blocks)
+
+
+# The names before weeks were declared objects; kept only while callers move to get_week / Week.
+WeekConfig = Week
+week_config = get_week
+
+__all__ = ["Week", "WeekConfig", "all_blocks", "all_weeks", "get_week", "refresh", "week_config",
+           "week_numbers"]
