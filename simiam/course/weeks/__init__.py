@@ -40,6 +40,7 @@ def _registry() -> dict[int, Week]:
 def refresh() -> None:
     """Look for week files again (after one was added to this package's path, e.g. in a test)."""
     _registry.cache_clear()
+    importlib.invalidate_caches()
 
 
 def week_numbers() -> tuple[int, ...]:

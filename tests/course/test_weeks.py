@@ -1,0 +1,137 @@
+"""The declared weeks: the registry finds weekN.py files by name, a Week refuses an inconsistent declaration,
+and a week added as one file is a week of the course."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import sys
+from pathlib import Path
+
+import pytest
+
+import simiam.course.weeks as weeks
+from simiam.course.placeholders import Placeholder
+from simiam.course.week import SupervisorSettings, Week
+from simiam.course.weeks import all_blocks, all_weeks, get_week, week_numbers
+from simiam.robot.quickbot import MAX_VEL_80RPM, RobotSpec
+
+
+def test_the_four_weeks_are_found_in_order() -> None:
+    assert week_numbers()[:4] == (1, 2, 3, 4)
+    assert [w.name for w in all_weeks()][:4] == ["week1", "week2", "week3", "week4"]
+    assert all(w.checks == f"grader.checks.{w.name}" for w in all_weeks())
+
+
+@pytest.mark.parametrize("given", [3, "3", "week3", " Week3 ", "WEEK 3"])
+def test_a_week_is_named_as_a_number_or_weekN(given) -> None:
+    assert get_week(given).number == 3
+
+
+@pytest.mark.parametrize("given", [0, 99, "week", "three", "week-1", "3.0", True, ""])
+def test_an_unknown_week_names_the_weeks_there_are(given) -> None:
+    with pytest.raises(ValueError, match=r"no such week: .*week1, week2, week3, week4"):
+        get_week(given)
+
+
+def test_each_block_belongs_to_the_week_that_declares_it() -> None:
+    for week in all_weeks():
+        assert all(b.week == week.number and b.file in week.student_files for b in week.blocks)
+    assert not get_week(1).blocks  # week 1 only runs the simulator
+    assert get_week(2).files_to_write == {"differential_drive.py", "qb_supervisor.py", "quickbot.py"}
+    assert len(all_blocks()) == sum(len(w.blocks) for w in all_weeks())
+
+
+def test_the_declared_values_of_weeks_1_to_4() -> None:
+    """The values the course ran with before the weeks were declared objects (the fidelity tests hold the
+    physics; these are what grade and simiam run share)."""
+    assert [get_week(n).seconds for n in (1, 2, 3, 4)] == [3.0, 8.0, 30.0, 60.0]
+    assert [get_week(n).spec.brain_first for n in (1, 2, 3, 4)] == [True, False, False, False]
+    assert [get_week(n).spec.ir_mode for n in (1, 2, 3, 4)] == ["week2", "week2", "week3", "week3"]
+    assert get_week(4).spec.min_vel > 0 == get_week(3).spec.min_vel
+    assert get_week(2).default_settings == {"theta_d": math.pi / 4, "v": 0.1}
+    assert get_week(4).settings.as_dict() == {"v": 0.15, "goal": (-1.0, 1.0), "d_stop": 0.05,
+                                              "state": "avoid_obstacles"}
+
+
+def test_settings_keep_named_and_open_ones_apart() -> None:
+    s = SupervisorSettings(v=0.1, extra={"d_fw": 0.1})
+    assert s.as_dict() == {"v": 0.1, "d_fw": 0.1}
+    assert s.with_changes(goal=(1.0, 0.0), d_at_obs=0.2).as_dict() == {
+        "v": 0.1, "goal": (1.0, 0.0), "d_fw": 0.1, "d_at_obs": 0.2}
+    with pytest.raises(ValueError, match="v are fields"):
+        SupervisorSettings(extra={"v": 0.3})
+
+
+def _week(**changes) -> Week:
+    fields = dict(number=9, title="t", spec=RobotSpec(week=9, max_vel=MAX_VEL_80RPM, min_vel=0.0,
+                                                      ir_mode="week3"),
+                  world="week4", student_files=("a.py",), required_names={"a.py": ("A",)},
+                  checks="grader.checks.week9",
+                  blocks=(Placeholder("a.py", "A.f", hint="h", code="x = 0"),))
+    return Week(**{**fields, **changes})
+
+
+@pytest.mark.parametrize("changes,match", [
+    ({"number": 0}, "number must be"),
+    ({"spec": RobotSpec(week=4, max_vel=1.0, min_vel=0.0, ir_mode="week3")}, "RobotSpec says week 4"),
+    ({"checks": "grader/checks/week9.py"}, "checks must be a module name"),
+    ({"required_names": {"b.py": ("B",)}}, "not student files"),
+    ({"blocks": (Placeholder("b.py", "f", hint="h", code="x = 0"),)}, "not a student file"),
+    ({"blocks": (Placeholder("a.py", "f", hint="h", code="x = 0", week=3),)}, "says week 3"),
+    ({"blocks": (Placeholder("a.py", "f", hint="h", code=""),) * 2}, "declared twice"),
+])
+def test_an_inconsistent_week_is_refused(changes, match) -> None:
+    assert _week().blocks[0].week == 9
+    with pytest.raises(ValueError, match=match):
+        _week(**changes)
+
+
+WEEK9 = '''
+from simiam.course.weeks.week4 import WEEK as _FOUR
+import dataclasses
+WEEK = dataclasses.replace(_FOUR, number={number}, spec=dataclasses.replace(_FOUR.spec, week={number}),
+                           blocks=(), checks="grader.checks.week4", seconds=1.5)
+'''
+
+
+@pytest.fixture
+def extra_weeks(tmp_path: Path, monkeypatch):
+    """A folder on the weeks package's path: a week file written there is a week of the course."""
+    def forget() -> None:
+        for name in [n for n in sys.modules if n.startswith("simiam.course.weeks.week9")]:
+            del sys.modules[name]
+        weeks.refresh()
+
+    monkeypatch.setattr(weeks, "__path__", [*weeks.__path__, str(tmp_path)])
+    forget()
+    yield tmp_path
+    monkeypatch.undo()
+    forget()
+
+
+def test_a_week_is_added_by_adding_its_file(extra_weeks: Path) -> None:
+    (extra_weeks / "week9.py").write_text(WEEK9.format(number=9))
+    (extra_weeks / "notes.py").write_text("raise AssertionError('not a week file: never imported')\n")
+    weeks.refresh()
+    assert week_numbers()[-1] == 9
+    assert get_week("week9").seconds == 1.5 and get_week(9).spec.week == 9
+    with pytest.raises(ValueError, match="week9"):
+        get_week(10)
+
+
+def test_a_week_file_must_match_its_name_and_declare_WEEK(extra_weeks: Path) -> None:
+    (extra_weeks / "week9.py").write_text(WEEK9.format(number=8))
+    weeks.refresh()
+    with pytest.raises(ValueError, match=r"week9.py: declares week 8, its file name says week 9"):
+        week_numbers()
+    sys.modules.pop("simiam.course.weeks.week9")
+    (extra_weeks / "week9.py").write_text("WEEK = None\n")
+    weeks.refresh()
+    with pytest.raises(TypeError, match=r"week9.py: a week file must define WEEK = Week"):
+        week_numbers()
+
+
+def test_a_week_is_immutable() -> None:
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        get_week(3).seconds = 1.0  # type: ignore[misc]
