@@ -16,6 +16,8 @@ from typing import Any
 
 from grader.result import CheckResult
 from grader.sandbox.errors import SandboxError, StudentError, StudentTimeout, WorkerDied
+from simiam.course.week import Week
+from simiam.course.weeks import get_week
 
 
 class Mismatch(Exception):
@@ -49,10 +51,9 @@ class Context:
     last_probe: tuple[str, dict[str, Any]] | None = None  # the last probe sent: what a replay repeats
 
     @property
-    def config(self):
-        from simiam.course.weeks import week_config
-
-        return week_config(self.week)
+    def config(self) -> Week:
+        """The week's declaration (robot, world, settings, run length)."""
+        return get_week(self.week)
 
     @property
     def spec(self):
@@ -66,9 +67,15 @@ class Context:
         )
 
 
+# What the report can draw for a scenario run (grader/report/svg.py): the path in the world, the heading
+# against the goal direction (settle band), the heading against a fixed theta_d.
+PLOTS = ("trajectory", "heading", "angle")
+
+
 @dataclass(frozen=True)
 class Check:
-    """One check of one week. `needs`: the student files it runs (a file that did not load fails it)."""
+    """One check of one week. `needs`: the student files it runs (a file that did not load fails it).
+    `plots`: what the report draws for each of its scenario runs (names from PLOTS)."""
 
     id: str
     name: str
@@ -77,6 +84,12 @@ class Check:
     run: Callable[[Context], Outcome]
     needs: tuple[str, ...] = ()
     visibility: str = "visible"
+    plots: tuple[str, ...] = ("trajectory",)
+
+    def __post_init__(self) -> None:
+        unknown = sorted(set(self.plots) - set(PLOTS))
+        if unknown:
+            raise ValueError(f"check {self.id}: unknown plots {unknown} (known: {', '.join(PLOTS)})")
 
     @property
     def part(self) -> str:
@@ -84,8 +97,9 @@ class Check:
 
 
 def checks_for_week(week: int) -> list[Check]:
-    """Every check of `week` (visible and hidden), in report order."""
-    module = importlib.import_module(f"grader.checks.week{int(week)}")
+    """Every check of `week` (visible and hidden), in report order: the CHECKS of the module the week
+    declares (`Week.checks`)."""
+    module = importlib.import_module(get_week(week).checks)
     return list(module.CHECKS)
 
 
