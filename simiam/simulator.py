@@ -238,6 +238,19 @@ class Simulator:
         xs, ys = transform_fast((self._x, self._y, self._theta), [cone[0] for cone in self._cones])
         return list(zip(xs, ys, strict=True))
 
+    def set_pose(self, pose: Pose) -> None:
+        """Put the robot at `pose` before the first step, without a physics pass.
+
+        This is what the original's week-6 tests did after building the world (`robot_s.pose.set_pose`):
+        the IR readings stay those of the world file's pose until the end of step 1, so the first
+        controller call sees stale readings. To start at a pose with fresh readings, pass `start=`.
+        """
+        if self._k:
+            raise ValueError("set_pose is only for the start, before the first step")
+        self.start = (float(pose[0]), float(pose[1]), float(pose[2]))
+        self._x, self._y, self._theta = self.start
+        self._last = self._record(None)
+
     def touches_obstacle(self) -> bool:
         """The collision test at the current true pose (what the next physics pass would report)."""
         return self._check_collision()

@@ -29,6 +29,7 @@ EXPOSED: tuple[str, ...] = (
     "simiam/control/__init__.py",
     "simiam/control/controller.py",
     "simiam/control/local_brain.py",
+    "simiam/control/norm.py",
     "simiam/control/pose.py",
     "simiam/control/robot_view.py",
     "simiam/control/stop.py",

@@ -6,18 +6,32 @@ from dataclasses import dataclass
 
 from simiam.control.pose import Pose2D
 
+# the sides FollowWall can follow a wall on; "" is what the week-7 supervisor sets after leaving a wall
+DIRECTIONS = ("left", "right", "")
+
 
 @dataclass
 class Inputs:
     """What a supervisor passes to a controller each step (the original's `inputs` struct).
 
-    `v`: linear velocity (m/s); `x_g`, `y_g`: the goal; `theta_d`: the desired heading (go-to-angle).
+    `v`: linear velocity (m/s); `x_g`, `y_g`: the goal; `theta_d`: the desired heading (go-to-angle);
+    `direction`: the side of the wall to follow, "left" or "right" ("" counts as "left", as in the original);
+    `d_fw`: the distance (m) to keep from the wall (follow-wall, week 6 on).
     """
 
     v: float = 0.0
     x_g: float = 0.0
     y_g: float = 0.0
     theta_d: float = 0.0
+    direction: str = "left"
+    d_fw: float = 0.15
+
+    def __post_init__(self) -> None:
+        # The original compared the direction with 'right' and took anything else for left, so a typo
+        # ("rigth", "Right") silently followed the wrong wall; here it is an error that names the value.
+        if self.direction not in DIRECTIONS:
+            raise ValueError(f"the wall-following direction must be 'left' or 'right', got {self.direction!r}"
+                             " (set fw_direction in QBSupervisor.__init__)")
 
 
 class Controller:

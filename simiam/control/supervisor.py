@@ -26,7 +26,7 @@ class Supervisor:
 
     Attributes a student uses: `robot` (the RobotView), `state_estimate` (a Pose2D from odometry),
     `prev_ticks`, `controllers` (state name -> Controller), `current_controller`, `current_state`,
-    and the week's settings `v`, `theta_d`, `goal`, `d_stop`.
+    and the week's settings `v`, `theta_d`, `goal`, `d_stop`, and (week 6 on) `d_fw`, `fw_direction`.
     """
 
     def __init__(self) -> None:
@@ -40,6 +40,9 @@ class Supervisor:
         self.theta_d = 0.0
         self.goal = (0.0, 0.0)
         self.d_stop = 0.05
+        # follow-wall (week 6 on): the distance to keep from the wall and its side, "left" or "right"
+        self.d_fw = 0.15
+        self.fw_direction = "left"
         # limits of the unicycle model, set by attach_robot as in the original
         self.v_max_w0 = 0.0
         self.w_max_v0 = 0.0
@@ -76,8 +79,10 @@ class Supervisor:
         return math.hypot(x - self.goal[0], y - self.goal[1]) < self.d_stop
 
     def inputs(self) -> Inputs:
-        """The inputs every controller gets: v, the goal (x_g, y_g) and theta_d."""
-        return Inputs(v=self.v, x_g=self.goal[0], y_g=self.goal[1], theta_d=self.theta_d)
+        """The inputs every controller gets: v, the goal (x_g, y_g), theta_d, direction (= fw_direction)
+        and d_fw."""
+        return Inputs(v=self.v, x_g=self.goal[0], y_g=self.goal[1], theta_d=self.theta_d,
+                      direction=self.fw_direction, d_fw=self.d_fw)
 
     def execute_controller(self, inputs: Inputs, dt: float) -> tuple[float, float]:
         """Run the current controller and return its (v, w); remembered in `self.outputs` for plots."""

@@ -85,11 +85,12 @@ def check_ir(ranger: Callable) -> dict:
             "poses": len(poses)}
 
 
-def check_world(obstacles: list) -> dict:
-    """Compare obstacle vertices with world_walls.csv (polygon and vertex ids are 1-based)."""
+def check_world(obstacles: list, name: str = "world_walls.csv") -> dict:
+    """Compare obstacle vertices with a recorded world, world_walls.csv by default (polygon and vertex ids
+    are 1-based)."""
     worst = 0.0
     exact = True
-    recorded = rows("world_walls.csv")
+    recorded = rows(name)
     n_polys = len({r["polygon_id"] for r in recorded})
     for r in recorded:
         k, v = int(r["polygon_id"]) - 1, int(r["vertex_id"]) - 1
