@@ -24,6 +24,8 @@ def norm(u: Iterable[float]) -> float:
     total = 1.0
     for value in u:
         t = abs(float(value))
+        if t != t:  # NaN (Octave's division by a zero scale would give NaN too; Python's would raise)
+            return math.nan
         if scl == t:
             total += 1.0
         elif scl < t:
