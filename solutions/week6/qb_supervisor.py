@@ -51,8 +51,8 @@ class QBSupervisor(Supervisor):
 
         # the wall to follow: its side ("left" or "right") and the distance to keep from it (m)
         # START CODE BLOCK
-        # 0.18 m is the author's value; at the release's 0.1 m the robot clips the L-shaped obstacle
-        # within 3 s, and it follows the arena walls around the obstacle from either side at 0.18 m.
+        # 0.18 m is the author's value: the robot circles the L-shaped obstacle on either side without
+        # touching it (0.15-0.2 m work at v = 0.15); at the release's 0.1 m it clips the obstacle within 3 s.
         self.d_fw = 0.18
         self.fw_direction = "left"
         # END CODE BLOCK
