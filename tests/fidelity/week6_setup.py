@@ -6,10 +6,14 @@ names each must define; the robot is the week-4 QuickBot, the world the week-4 L
 
 from __future__ import annotations
 
-from simiam.course.weeks import WeekConfig
+from simiam.course.week import SupervisorSettings, Week
+from simiam.robot.quickbot import MAX_VEL_130RPM, MIN_VEL_30RPM, RobotSpec
 
-WEEK6 = WeekConfig(
+WEEK6 = Week(
     number=6,
+    title="follow a wall",
+    spec=RobotSpec(week=6, max_vel=MAX_VEL_130RPM, min_vel=MIN_VEL_30RPM, ir_mode="week3"),
+    checks="grader.checks.week6",
     world="week6",
     student_files=("differential_drive.py", "quickbot.py", "go_to_angle.py", "go_to_goal.py",
                    "avoid_obstacles.py", "ao_and_gtg.py", "follow_wall.py", "qb_supervisor.py"),
@@ -27,7 +31,7 @@ WEEK6 = WeekConfig(
         "qb_supervisor.py": ("QBSupervisor", "QBSupervisor.execute", "QBSupervisor.update_odometry",
                              "QBSupervisor.ensure_w"),
     },
-    default_settings={"v": 0.15, "d_fw": 0.18, "fw_direction": "left", "state": "follow_wall"},
+    settings=SupervisorSettings(v=0.15, state="follow_wall", extra={"d_fw": 0.18, "fw_direction": "left"}),
     seconds=90.0,
     dt=0.05,
 )
