@@ -171,11 +171,11 @@ def print_phases(timers: Timers, wall: float, cpu: float, worker_cpu: float) -> 
 
 # ---- 3. Hypothesis per case -------------------------------------------------------------------------
 class InProcessSession:
-    """Answers probes in this process from the trusted reference solution (grader.sandbox.worker_loop's
+    """Answers probes in this process from the trusted reference solution (grader.inside.worker_loop's
     own dispatcher, JSON in between): the property checks without round trips, for timing only."""
 
     def __init__(self, week: int, folder: Path) -> None:
-        from grader.sandbox.worker_loop import _Worker
+        from grader.inside.worker_loop import _Worker
 
         self._worker = _Worker({"submission": str(folder), "week": week})
 

@@ -56,7 +56,7 @@ def package_version() -> str:
 
 
 # The code that decides a score besides the checks' own functions: a change here changes the hash too.
-_SCORING_MODULES = ("grader.reference", "grader.properties", "grader.scenarios", "grader.probes",
+_SCORING_MODULES = ("grader.reference", "grader.properties", "grader.scenarios", "grader.inside.probes",
                     "grader.checks.answers", "grader.hidden")
 
 

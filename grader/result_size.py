@@ -1,6 +1,6 @@
 """One student's result stays under a fixed size, whatever their code sends back.
 
-Every field that comes from the worker is capped where it enters the grader (grader.sandbox.caps),
+Every field that comes from the worker is capped where it enters the grader (grader.inside.caps),
 but a message can still be repeated per check, per file and per run. This is the last bound: a result
 whose JSON is larger than :data:`MAX_RESULT_BYTES` has its longest texts and lists cut, more and more,
 until it fits; the cut is recorded under ``"truncated"``. Scores, statuses and check ids are never cut.

@@ -1,7 +1,8 @@
 """Reading the student's untrusted answers: plain numbers, vectors and matrices, or a Mismatch saying why not.
 
-The worker sends JSON; a NaN or infinity arrives as the string "nan"/"inf" (see grader.probes.plain) and an
-object the worker could not turn into numbers arrives as {"type": name}. Only real ints and floats pass.
+The worker sends JSON; a NaN or infinity arrives as the string "nan"/"inf" (see grader.inside.probes.plain)
+and an object the worker could not turn into numbers arrives as {"type": name}. Only real ints and
+floats pass.
 """
 
 from __future__ import annotations

@@ -25,7 +25,7 @@ def has_module(name: str) -> bool:
 
 def missing(bwrap_ok: bool, bwrap_why: str = "") -> list[str]:
     """What the worker goes without on this system, one phrase each (empty: nothing is missing)."""
-    from grader.sandbox.seccomp import available as seccomp_available
+    from grader.inside.seccomp import available as seccomp_available
 
     out = []
     if not bwrap_ok:

@@ -2,10 +2,11 @@
 
 The worker (and so student code) sees one library folder, built per session from the list below: the robot
 view, the supervisor/controller framework and the provided Stop controller (simiam.control), the week
-table and the loader (simiam.course), the robot's spec (simiam.robot.quickbot), and the worker's code
-(grader.sandbox's worker side, grader.probes). Nothing here implements a student block: the reference
-kinematics (simiam.robot.dynamics), the checks' maths (grader.reference), the checks, the hidden set, the
-reference controllers (instructor_tools) and the solutions stay outside. `python -m grader.sandbox.exposed`
+table and the loader (simiam.course), the robot's spec (simiam.robot.quickbot), and the worker's own
+package (grader.inside, which imports nothing else of simiam or grader: tests/sandbox/test_inside.py).
+Nothing here implements a student block: the physics (simiam.robot.dynamics and the rest of the
+simulator), the checks' maths (grader.reference), the checks, the hidden set, the reference controllers
+(instructor_tools) and the solutions stay outside. `python -m grader.sandbox.exposed`
 lists the files; tests/sandbox/test_exposed.py proves the list imports nothing outside itself.
 
 bubblewrap binds only this folder and hides simiam/ and grader/ wherever an installed copy would be visible
@@ -44,17 +45,16 @@ EXPOSED: tuple[str, ...] = (
     "simiam/robot/__init__.py",
     "simiam/robot/quickbot.py",
     "grader/__init__.py",
-    "grader/probes.py",
-    "grader/sandbox/__init__.py",
-    "grader/sandbox/caps.py",          # imported by protocol.py (caps on what the worker sends back)
-    "grader/sandbox/errors.py",
-    "grader/sandbox/limits.py",
-    "grader/sandbox/protocol.py",
-    "grader/sandbox/seccomp.py",
-    "grader/sandbox/worker.py",
-    "grader/sandbox/worker_loop.py",
+    "grader/inside/__init__.py",       # the worker's own package: imports nothing trusted (grader/inside/)
+    "grader/inside/caps.py",
+    "grader/inside/probes.py",
+    "grader/inside/protocol.py",
+    "grader/inside/rlimits.py",
+    "grader/inside/seccomp.py",
+    "grader/inside/worker.py",
+    "grader/inside/worker_loop.py",
 )
-WORKER = "grader/sandbox/worker.py"
+WORKER = "grader/inside/worker.py"
 
 
 def source_of(relative: str) -> Path:

@@ -270,8 +270,8 @@ def describe(mode: str) -> str:
 
 
 def _describe_subprocess() -> str:
+    from grader.inside.seccomp import available
     from grader.sandbox.capabilities import has_module
-    from grader.sandbox.seccomp import available
 
     limited = ", resource-limited" if has_module("resource") else ""
     note = functools.partial(NOTES[SUBPROCESS].format, limited=limited)

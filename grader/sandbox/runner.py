@@ -22,11 +22,11 @@ import subprocess
 import sys
 import time
 
+from grader.inside.protocol import LineReader, ProtocolError, decode, encode
 from grader.sandbox.errors import StudentTimeout, WorkerDied
 from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
 from grader.sandbox.leftovers import remove_ipc_of
 from grader.sandbox.output import CappedOutput
-from grader.sandbox.protocol import LineReader, ProtocolError, decode, encode
 
 DUMP_WAIT_SECONDS = 0.25   # how long a timed-out worker gets to write its stack dump before the kill
 DUMP_IDLE_SECONDS = 0.02

@@ -22,9 +22,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from grader.sandbox import isolation
-from grader.sandbox.capabilities import has_module, with_refused_limits
-from grader.sandbox.caps import (
+from grader.inside.caps import (
     FILE_CHARS,
     MAX_ERRORS,
     MAX_MODULES,
@@ -34,10 +32,12 @@ from grader.sandbox.caps import (
     TYPE_CHARS,
     clip,
 )
+from grader.inside.protocol import to_json
+from grader.sandbox import isolation
+from grader.sandbox.capabilities import has_module, with_refused_limits
 from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeout, WorkerDied
 from grader.sandbox.exposed import build_library
 from grader.sandbox.limits import Limits
-from grader.sandbox.protocol import to_json
 from grader.sandbox.runner import WorkerProcess
 from grader.sandbox.stuck import Stuck, find_stuck
 from grader.sandbox.workdir import WorkCopy
@@ -49,7 +49,7 @@ class StudentSession:
     """One submission's worker, started lazily, restarted after a kill, always killed on close()."""
 
     def __init__(self, week: int, spliced_dir: Path | str, limits: Limits | None = None, *,
-                 sandbox: str = "auto", probes: str = "grader.probes", probes_file: Path | None = None,
+                 sandbox: str = "auto", probes: str = "grader.inside.probes", probes_file: Path | None = None,
                  extra_paths: tuple[str, ...] = (),
                  loader: str = "simiam.course.loader:load_submission") -> None:
         self.week = int(week)

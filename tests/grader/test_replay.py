@@ -82,7 +82,7 @@ PROBE_CALLS = [  # one call of every probe, as the checks send them
 
 @pytest.mark.parametrize(("name", "args"), PROBE_CALLS, ids=[n for n, _ in PROBE_CALLS])
 def test_every_probe_has_a_snippet_that_runs(name: str, args: dict) -> None:
-    from grader.probes import PROBES
+    from grader.inside.probes import PROBES
     from grader.replay import snippet
 
     assert {n for n, _ in PROBE_CALLS} == set(PROBES)

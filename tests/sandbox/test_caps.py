@@ -10,9 +10,9 @@ from pathlib import Path
 from sandbox_wrong import naive
 
 from grader.grading import write_outputs
+from grader.inside import caps
+from grader.inside.protocol import decode
 from grader.result_size import MAX_RESULT_BYTES, bound_result, result_bytes
-from grader.sandbox import caps
-from grader.sandbox.protocol import decode
 from grader.sandbox.session import _check_load, _student_error
 
 MEGA = "<img src=x onerror=alert(1)>" * 40_000          # > 1 MB

@@ -22,7 +22,7 @@ REFERENCE_FILES = ["grader/reference.py", "simiam/robot/dynamics.py", "instructo
                    "instructor_tools/hidden/week4.json", "solutions/week3/go_to_goal.py",
                    "grader/checks/week2.py"]
 # What the course gives students and the worker itself needs: these must keep importing.
-COURSE_MODULES = ["simiam.control", "simiam.control.stop", "simiam.course.weeks", "grader.probes"]
+COURSE_MODULES = ["simiam.control", "simiam.control.stop", "simiam.course.weeks", "grader.inside.probes"]
 
 
 def test_no_reference_implementation_imports_inside_the_worker(open_session, mode):

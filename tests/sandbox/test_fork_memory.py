@@ -10,7 +10,8 @@ from pathlib import Path
 import pytest
 from sandbox_helpers import LIMITS, attack
 
-from grader.sandbox import exposed, seccomp
+from grader.inside import seccomp
+from grader.sandbox import exposed
 from grader.sandbox.limits import Limits
 
 pytestmark = pytest.mark.skipif(seccomp.program() is None, reason="no seccomp filter for this machine")
@@ -31,11 +32,11 @@ def test_the_test_sees_forks_multiply_memory(open_session, monkeypatch, tmp_path
     """The wrong version: the filter without the fork ban (as before). Three children and the worker then
     hold 1000 MB under a 400 MB limit."""
     wrong = tmp_path / "seccomp.py"
-    text = exposed.source_of("grader/sandbox/seccomp.py").read_text()
+    text = exposed.source_of("grader/inside/seccomp.py").read_text()
     wrong.write_text(text.replace("DENY_NEW_PROCESSES = True", "DENY_NEW_PROCESSES = False"))
     real = exposed.source_of
     monkeypatch.setattr(exposed, "source_of",
-                        lambda relative: wrong if relative == "grader/sandbox/seccomp.py" else real(relative))
+                        lambda relative: wrong if relative == "grader/inside/seccomp.py" else real(relative))
     session = open_session("fork_memory", SMALL)
     seen = attack(session, children=3, mb=250)
     assert seen["error"] == "" and seen["bytes_held"] == 4 * 250 * MB > SMALL.memory_bytes

@@ -62,7 +62,7 @@ sys.path[:0] = {paths!r}
 import importlib
 for name in {modules!r}:
     importlib.import_module(name)
-from grader.sandbox.limits import apply_rlimits
+from grader.inside.rlimits import apply_rlimits
 print(apply_rlimits({{"cpu": 5, "memory": 1 << 30, "file": 1 << 20, "open_files": 64, "processes": 8}}))
 """
 
@@ -88,7 +88,7 @@ def refuse_memory(which, limits):  # what a system that does not support RLIMIT_
     real(which, limits)
 
 resource.setrlimit = refuse_memory
-from grader.sandbox.limits import apply_rlimits
+from grader.inside.rlimits import apply_rlimits
 print(apply_rlimits({{"cpu": 5, "memory": 1 << 30, "file": 1 << 20, "open_files": 64, "processes": 64}}))
 print(resource.getrlimit(resource.RLIMIT_FSIZE)[0])
 """

@@ -8,8 +8,8 @@ import numpy
 import pytest
 from sandbox_wrong import naive
 
-from grader.sandbox import protocol
-from grader.sandbox.protocol import LineReader, NotJSON, ProtocolError, decode, encode, to_json
+from grader.inside import protocol
+from grader.inside.protocol import LineReader, NotJSON, ProtocolError, decode, encode, to_json
 
 HOSTILE_LINES = [
     b'{"id": 1, "ok": true, "value": NaN}',

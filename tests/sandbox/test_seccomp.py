@@ -10,12 +10,12 @@ from pathlib import Path
 import pytest
 
 import grader
-from grader.sandbox import seccomp
+from grader.inside import seccomp
 
 PROBE = """
 import ctypes, os, socket, subprocess, sys, threading
 sys.path[:0] = {paths!r}
-from grader.sandbox.seccomp import install
+from grader.inside.seccomp import install
 assert install()
 results = []
 for family in (socket.AF_INET, socket.AF_INET6, socket.AF_NETLINK, socket.AF_PACKET):

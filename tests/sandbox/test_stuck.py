@@ -112,7 +112,7 @@ def test_the_innermost_student_frame_of_the_serving_thread_wins(folder):
                 (1, ['File "/usr/lib/python3/numpy/core.py", line 3 in dot',       # trusted frame on top
                      'File "/submission/go_to_goal.py", line 7 in execute',
                      'File "/submission/go_to_goal.py", line 11 in helper',
-                     'File "/grader/sandbox/worker_loop.py", line 58 in op_probe']))
+                     'File "/grader/inside/worker_loop.py", line 58 in op_probe']))
     assert find_stuck(data, "/submission", folder, 1) == Stuck("go_to_goal.py", 7, "GoToGoal.Inner.execute")
     assert find_stuck(data, "/submission", folder, 99) == Stuck("go_to_goal.py", 11, "helper")
     place = Stuck("go_to_goal.py", 7, "GoToGoal.Inner.execute")

@@ -1,4 +1,4 @@
-"""Probes for the sandbox tests (run inside the worker, like grader/probes.py).
+"""Probes for the sandbox tests (run inside the worker, like grader/inside/probes.py).
 
 `attack(sub, fn="attack", ...)` calls `fn(**args)` in the submission's differential_drive.py;
 `uni_to_diff` calls the student's function with a stand-in robot.

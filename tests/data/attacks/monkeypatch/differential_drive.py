@@ -26,7 +26,7 @@ def honest():
 
 
 def attack(**args):
-    import grader.sandbox.protocol as protocol
+    import grader.inside.protocol as protocol
     import simiam.robot.quickbot as quickbot
 
     try:

@@ -36,8 +36,8 @@ def _drop_privileges(uid: int, gid: int) -> None:
 
 # The trusted modules every worker needs, imported before the privilege drop and before student code.
 _PRELOAD = ("math", "faulthandler", "resource", "numpy", "simiam.control", "simiam.course.weeks",
-            "simiam.course.loader", "grader.sandbox.limits", "grader.sandbox.seccomp",
-            "grader.sandbox.worker_loop", "ctypes")
+            "simiam.course.loader", "grader.inside.rlimits", "grader.inside.seccomp",
+            "grader.inside.worker_loop", "ctypes")
 # Standard-library modules a student may import, preloaded only when the dedicated uid cannot read the
 # Python environment (subprocess mode, interpreter under a private home directory).
 _STDLIB = ("cmath", "random", "statistics", "functools", "itertools", "collections", "copy", "time", "json",
@@ -67,7 +67,7 @@ def _bootstrap(config: dict) -> None:
 
     stdlib = _STDLIB if config.get("preload_stdlib") else ()
     loader = config.get("loader", "").split(":")[0]
-    for name in (*_PRELOAD, *stdlib, config.get("probes", "grader.probes"), loader):
+    for name in (*_PRELOAD, *stdlib, config.get("probes", "grader.inside.probes"), loader):
         try:
             importlib.import_module(name)
         except ImportError:
@@ -75,8 +75,8 @@ def _bootstrap(config: dict) -> None:
     if config.get("uid") is not None:
         _drop_privileges(int(config["uid"]), int(config["gid"]))
     _die_with_parent(config.get("parent"))
-    from grader.sandbox.limits import apply_rlimits
-    from grader.sandbox.seccomp import install
+    from grader.inside.rlimits import apply_rlimits
+    from grader.inside.seccomp import install
 
     refused = apply_rlimits(config["rlimits"])
     if config["rlimits"] is not None and refused is None:
@@ -92,7 +92,7 @@ def main() -> None:
     config = json.loads(sys.argv[1])
     del sys.argv[1:]  # nothing secret is passed, but student code has no use for it either
     _bootstrap(config)
-    from grader.sandbox.worker_loop import serve
+    from grader.inside.worker_loop import serve
 
     serve(config)
 

@@ -18,7 +18,7 @@ import traceback
 from pathlib import Path
 from typing import Any
 
-from grader.sandbox.protocol import LineReader, NotJSON, ProtocolError, decode, encode, to_json
+from grader.inside.protocol import LineReader, NotJSON, ProtocolError, decode, encode, to_json
 
 
 class _Worker:
@@ -26,7 +26,7 @@ class _Worker:
         self.folder = Path(config["submission"])
         self.week = int(config["week"])
         self.loader_name = config.get("loader", "simiam.course.loader:load_submission")
-        self.probes = importlib.import_module(config.get("probes", "grader.probes"))
+        self.probes = importlib.import_module(config.get("probes", "grader.inside.probes"))
         self.allowed = _probe_names(self.probes)
         self.sub: Any = None
         self.brain: Any = None  # the trusted framework was imported by the bootstrap (worker.py)

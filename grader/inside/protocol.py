@@ -14,7 +14,7 @@ import math
 import re
 from typing import Any
 
-from grader.sandbox.caps import clean
+from grader.inside.caps import clean
 
 MAX_MESSAGE = 4 * 1024 * 1024  # bytes per message (a 30 s scenario step command is ~200 bytes)
 _FLOAT_TAG = "$float"

@@ -1,0 +1,229 @@
+"""What counts as an answer, derived from the code blocks of solutions/ (every week, so a new week is
+covered the day its solutions exist), and a search for those answers in any file (issue 11: the wheel holds
+no answers).
+
+Two rules, both computed from each block, never from a list of names:
+
+- **Lines**: a normalised code line of a block (whitespace collapsed, trailing comment dropped) that the
+  course does not give every student anyway (provided code outside the blocks, the placeholders).
+- **Expressions**, to catch the same maths in other wording: every expression of a block, with local names
+  replaced by `_` (module names such as `math` and attribute names such as `.max_vel` kept), numbers as
+  floats, the operands of `+` and `*` sorted, and locals assigned once inlined (so `c = math.cos(theta)`
+  then `[c, -s, x]` reads like `[math.cos(theta), -math.sin(theta), x]`). Expressions that provided code
+  holds are not answers. A file holds a block's answer if it contains one of the block's expressions of
+  weight >= DISTINCT (weight: the number of operands, operators, calls, names and constants), or at least
+  SEVERAL distinct expressions of weight >= SMALL of one block inside one function. One small expression
+  alone is ordinary geometry (`d * math.cos(heading)`, the midpoint `(a + b) / 2`), which the simulator
+  and the report need; the same three of them in one function are an odometry update.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+import textwrap
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+from simiam.course.blocks import find_blocks
+from simiam.course.placeholders import PLACEHOLDERS
+
+DISTINCT = 8
+SMALL = 5
+SEVERAL = 3
+MODULES = frozenset({"math", "np", "numpy", "cmath"})
+_WEIGHED = (ast.BinOp, ast.UnaryOp, ast.Call, ast.Attribute, ast.Subscript, ast.Compare, ast.BoolOp,
+            ast.IfExp, ast.Name, ast.Constant)
+_SORTED = (ast.Add, ast.Mult)
+
+
+def norm_line(line: str) -> str:
+    return re.sub(r"\s+", " ", line.split("  #")[0]).strip()
+
+
+class _Shapes:
+    """Shapes and weights of the expressions of one scope, as written (`inline=False`) and with the locals
+    it assigns exactly once replaced by their expressions (`inline=True`); memoised per node."""
+
+    def __init__(self, scope: ast.AST) -> None:
+        counts: dict[str, int] = {}
+        values: dict[str, ast.expr] = {}
+        for node in _own_nodes(scope):
+            if isinstance(node, ast.Assign) and len(node.targets) == 1:
+                for name, value in _pairs(node.targets[0], node.value):
+                    counts[name] = counts.get(name, 0) + 1
+                    values[name] = value
+            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+                counts[node.id] = counts.get(node.id, 0) + 1  # loop variables, augmented and other targets
+        self.values = {k: v for k, v in values.items() if counts.get(k) == 2}  # the Assign and its Name
+        self.memo: dict[tuple[int, bool], tuple[str, int]] = {}
+        self.busy: set[str] = set()
+
+    def of(self, node: ast.AST, inline: bool) -> tuple[str, int]:
+        key = (id(node), inline)
+        if key not in self.memo:
+            self.memo[key] = self._of(node, inline)
+        return self.memo[key]
+
+    def _of(self, node: ast.AST, inline: bool) -> tuple[str, int]:
+        if isinstance(node, ast.Name):
+            value = self.values.get(node.id) if inline and isinstance(node.ctx, ast.Load) else None
+            if value is not None and node.id not in self.busy:
+                self.busy.add(node.id)
+                try:
+                    return self.of(value, True)
+                finally:
+                    self.busy.discard(node.id)
+            return (node.id if node.id in MODULES else "_"), 1
+        if isinstance(node, ast.Constant):
+            value = node.value
+            number = isinstance(value, int | float) and not isinstance(value, bool)
+            return (repr(float(value)) if number else repr(value)), 1
+        weight = 1 if isinstance(node, _WEIGHED) else 0
+        if isinstance(node, ast.BinOp) and isinstance(node.op, _SORTED):
+            kind = type(node.op)
+            terms: list[ast.AST] = []
+            stack: list[ast.AST] = [node]
+            while stack:
+                n = stack.pop()
+                if isinstance(n, ast.BinOp) and isinstance(n.op, kind):
+                    stack += [n.left, n.right]
+                    weight += n is not node
+                else:
+                    terms.append(n)
+            parts = [self.of(t, inline) for t in terms]
+            return (f"{kind.__name__}({','.join(sorted(s for s, _ in parts))})",
+                    weight + sum(w for _, w in parts))
+        if isinstance(node, ast.Attribute):
+            inner, w = self.of(node.value, inline)
+            return f"{inner}.{node.attr}", weight + w
+        kids = [c for c in ast.iter_child_nodes(node) if not isinstance(c, ast.expr_context)]
+        parts = [self.of(c, inline) for c in kids]
+        return f"{type(node).__name__}({','.join(s for s, _ in parts)})", weight + sum(w for _, w in parts)
+
+
+def _pairs(target: ast.expr, value: ast.expr) -> list[tuple[str, ast.expr]]:
+    if isinstance(target, ast.Name):
+        return [(target.id, value)]
+    if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) and len(target.elts) == len(value.elts):
+        return [p for t, v in zip(target.elts, value.elts, strict=True) for p in _pairs(t, v)]
+    return []
+
+
+_FUNCTIONS = (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)
+
+
+def _own_nodes(scope: ast.AST) -> Iterator[ast.AST]:
+    """The nodes of a function (with the functions nested in it), or of a module outside its functions."""
+    stack = list(ast.iter_child_nodes(scope))
+    while stack:
+        node = stack.pop()
+        if isinstance(scope, ast.Module) and isinstance(node, _FUNCTIONS):
+            continue
+        yield node
+        stack.extend(ast.iter_child_nodes(node))
+
+
+def _scopes(tree: ast.AST) -> Iterator[ast.AST]:
+    """The module (outside its functions) and every function in it."""
+    yield tree
+    for node in ast.walk(tree):
+        if isinstance(node, _FUNCTIONS):
+            yield node
+
+
+def expressions(scope: ast.AST, minimum: int = SMALL) -> dict[str, int]:
+    """{shape: weight} of every expression of `scope`, as written and with single-assignment locals
+    inlined."""
+    shapes = _Shapes(scope)
+    out: dict[str, int] = {}
+    for node in _own_nodes(scope):
+        if isinstance(node, ast.expr) and not isinstance(node, ast.Name | ast.Constant):
+            for inline in (False, True):
+                shape, weight = shapes.of(node, inline)
+                if weight >= minimum:
+                    out[shape] = weight
+    return out
+
+
+def _all_expressions(tree: ast.AST, minimum: int) -> dict[str, int]:
+    out: dict[str, int] = {}
+    for scope in _scopes(tree):
+        out.update(expressions(scope, minimum))
+    return out
+
+
+@dataclass
+class Answers:
+    """What counts as an answer: code lines and expression shapes, each with the block it comes from."""
+
+    lines: dict[str, str]
+    shapes: dict[str, tuple[int, str]]  # shape -> (weight, block)
+
+    def blocks(self) -> set[str]:
+        return {b for _, b in self.shapes.values()} | set(self.lines.values())
+
+
+def _provided(repo: Path) -> tuple[set[str], set[str]]:
+    """Lines and shapes every student receives anyway: the placeholders, and the stubs outside the blocks."""
+    lines = {norm_line(ln) for p in PLACEHOLDERS for ln in p.code.splitlines()}
+    shapes: set[str] = set()
+    for stub in sorted(repo.glob("assignments/week*/*.py")):
+        text = stub.read_text()
+        inside = {n for b in find_blocks(text, stub.name) for n in range(b.start_line + 1, b.end_line)}
+        outside = [ln for n, ln in enumerate(text.splitlines(), 1) if n not in inside]
+        lines.update(norm_line(ln) for ln in outside)
+        blanked = text.splitlines()  # the blocks' bodies out (later weeks ship earlier answers filled in)
+        for b in find_blocks(text, stub.name):
+            blanked[b.start_line:b.end_line - 1] = [f"{b.indent}pass"] * (b.end_line - 1 - b.start_line)
+        shapes.update(_all_expressions(ast.parse("\n".join(blanked)), 1))
+        shapes.update(s for p in PLACEHOLDERS for s in _all_expressions(ast.parse(p.code), 1))
+    return lines, shapes
+
+
+def answers_of(repo: Path) -> Answers:
+    """Every answer of every block of solutions/week*/ (see the module's docstring)."""
+    provided_lines, provided_shapes = _provided(repo)
+    lines: dict[str, str] = {}
+    shapes: dict[str, tuple[int, str]] = {}
+    for path in sorted(repo.glob("solutions/week*/*.py")):
+        for b in find_blocks(path.read_text(), path.name):
+            where = f"{path.relative_to(repo)} {b.describe()}"
+            for line in b.body.splitlines():
+                code = norm_line(line)
+                trivial = not code or code.startswith("#") or re.fullmatch(r"\w+:", code)
+                if not trivial and code not in provided_lines:
+                    lines[code] = where
+            body = ast.parse(textwrap.dedent(b.body))
+            for shape, weight in _all_expressions(body, SMALL).items():
+                if shape not in provided_shapes:
+                    shapes[shape] = (weight, where)
+    return Answers(lines, shapes)
+
+
+def found_in(text: str, answers: Answers) -> list[str]:
+    """The answers `text` holds, in words (empty: none). Python files are searched by lines and shapes,
+    any other file by lines."""
+    own = {norm_line(x) for x in text.splitlines()}
+    hits = sorted(f"line {ln!r} of {where}" for ln, where in answers.lines.items() if ln in own)
+    try:
+        tree = ast.parse(text)
+    except (SyntaxError, ValueError):
+        return hits
+    for scope in _scopes(tree):
+        per_block: dict[str, set[str]] = {}
+        for shape in expressions(scope).keys() & answers.shapes.keys():
+            weight, where = answers.shapes[shape]
+            if weight >= DISTINCT:
+                hits.append(f"the expression {shape} of {where}")
+            per_block.setdefault(where, set()).add(shape)
+        name = getattr(scope, "name", "the module")
+        hits.extend(f"{len(found)} expressions of {where} in {name}: {sorted(found)}"
+                    for where, found in per_block.items() if len(found) >= SEVERAL)
+    return sorted(set(hits))
+
+
+def search(files: Iterable[tuple[str, str]], answers: Answers) -> dict[str, list[str]]:
+    """{file name: the answers it holds} over (name, text) pairs."""
+    return {name: found for name, text in files if (found := found_in(text, answers))}
