@@ -42,7 +42,8 @@ class Controller:
     `E_k` (accumulated error) and `e_k_1` (previous error); `reset()` zeroes it.
 
     After computing, a controller stores what the viewer and the grader plot: `theta_g` (its reference
-    heading), `u_ao` (avoid-obstacles vector), `ir_distances_wf` (IR points in the world frame).
+    heading), `u_ao` (avoid-obstacles vector), `ir_distances_wf` (IR points in the world frame), and
+    from week 5 `u_gtg` (go-to-goal vector) and `u_ao_gtg` (the blend of the two).
     They stay None for controllers that have no such quantity.
     """
 
@@ -53,6 +54,8 @@ class Controller:
         self.theta_g: float | None = None
         self.u_ao = None
         self.ir_distances_wf = None
+        self.u_gtg = None
+        self.u_ao_gtg = None
 
     def execute(self, robot, state_estimate: Pose2D, inputs: Inputs, dt: float) -> tuple[float, float]:
         """Compute (v, w) from the robot's sensors and the state estimate."""

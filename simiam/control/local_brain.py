@@ -11,16 +11,19 @@ import numbers
 from simiam.control.pose import Pose2D
 from simiam.control.robot_view import RobotView
 
-# settings that are plain attributes of the supervisor
-_ATTRIBUTES = ("v", "goal", "d_stop", "theta_d", "d_fw", "fw_direction")
+# settings that are plain attributes of the supervisor (week 5: the event thresholds and is_blending;
+# week 6: the follow-wall distance and side)
+_ATTRIBUTES = ("v", "goal", "d_stop", "theta_d", "d_at_obs", "d_unsafe", "is_blending", "d_fw",
+               "fw_direction")
 
 
 class LocalBrain:
     """Builds a RobotView and the student's QBSupervisor and steps them with the simulator's readings.
 
     `settings` overrides what the student's QBSupervisor.__init__ set: `v`, `goal` (x, y), `d_stop`,
-    `theta_d`, `d_fw`, `fw_direction`, the initial `state` (a controller name such as "go_to_goal"), and
-    controller gains as `{"gains": {"go_to_goal": {"Kp": 4, "Ki": 0.01, "Kd": 0.01}}}` (a top-level
+    `theta_d`, `d_at_obs`, `d_unsafe`, `is_blending` (week 5), `d_fw`, `fw_direction` (week 6), the initial
+    `state` (a controller name such as "go_to_goal"), and controller gains as
+    `{"gains": {"go_to_goal": {"Kp": 4, "Ki": 0.01, "Kd": 0.01}}}` (a top-level
     `{"go_to_goal": {...}}` is accepted too). `start` is where the estimate starts (default: the week's).
     """
 

@@ -1,13 +1,20 @@
 """Supervisor base class: the state estimate, the controllers, switching between them, events.
 
 The student's `QBSupervisor` (qb_supervisor.py) derives from this and writes `execute(dt)`,
-`update_odometry()` and (week 3) `ensure_w(robot, v, w)`.
+`update_odometry()` and (week 3) `ensure_w(robot, v, w)`; from week 5 it switches between states on
+events (`check_event("at_obstacle")`, `switch_to_state("ao_and_gtg")`).
+
+A misspelt state or event name raises UnknownNameError naming the student's file and line: the original
+printed "no state exists with name ..." and went on (check_event returned false), which hid typos.
 """
 
 from __future__ import annotations
 
+import difflib
 import math
+import sys
 from dataclasses import dataclass
+from pathlib import Path
 
 from simiam.control.controller import Controller, Inputs
 from simiam.control.pose import Pose2D
@@ -21,12 +28,51 @@ class WheelTicks:
     left: int = 0
 
 
+class UnknownNameError(ValueError):
+    """switch_to_state or check_event got a name that is no state or event of this supervisor."""
+
+
+# frames in this package are the framework; the first frame outside it is whoever called us
+_FRAMEWORK = Path(__file__).resolve().parents[1]
+
+
+def _caller_location() -> str:
+    """'qb_supervisor.py, line 57: ' for the nearest caller outside simiam, or '' when simiam called."""
+    frame = sys._getframe(1)
+    while frame is not None:
+        try:
+            path = Path(frame.f_code.co_filename).resolve()
+        except (OSError, ValueError):
+            return ""
+        if _FRAMEWORK not in path.parents:
+            return f"{path.name}, line {frame.f_lineno}: "
+        if path.name != "supervisor.py":  # LocalBrain applying settings: not the student's code
+            return ""
+        frame = frame.f_back
+    return ""
+
+
+def _unknown(kind: str, name: object, known: list[str]) -> UnknownNameError:
+    """The error for a name that is not a state (or event): where, what, and the closest known name."""
+    shown = repr(name) if len(repr(name)) <= 80 else repr(name)[:77] + "..."
+    if not isinstance(name, str):
+        text = f"a {kind} name is a string such as {known[0]!r}, not {type(name).__name__} {shown}"
+    else:
+        text = f"no {kind} exists with name {shown} (the {kind}s are: {', '.join(known)})"
+        close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+        if close:
+            text += f"; did you mean {close[0]!r}?"
+    return UnknownNameError(_caller_location() + text)
+
+
 class Supervisor:
     """Holds the controllers and decides which one runs (the original's QBSupervisor skeleton).
 
     Attributes a student uses: `robot` (the RobotView), `state_estimate` (a Pose2D from odometry),
     `prev_ticks`, `controllers` (state name -> Controller), `current_controller`, `current_state`,
-    and the week's settings `v`, `theta_d`, `goal`, `d_stop`, and (week 6 on) `d_fw`, `fw_direction`.
+    `switch_count` (switches so far), and the week's settings `v`, `theta_d`, `goal`, `d_stop`,
+    `d_at_obs` and `d_unsafe` (the obstacle thresholds of the events, metres), and (week 6 on) `d_fw`,
+    `fw_direction`.
     """
 
     def __init__(self) -> None:
@@ -43,6 +89,12 @@ class Supervisor:
         # follow-wall (week 6 on): the distance to keep from the wall and its side, "left" or "right"
         self.d_fw = 0.15
         self.fw_direction = "left"
+        # week 5's thresholds (the sp14 release): an IR distance under d_at_obs is "at an obstacle",
+        # under d_unsafe "unsafe"
+        self.d_at_obs = 0.25
+        self.d_unsafe = 0.10
+        # switches between states; setting the first state (from none) is not a switch
+        self.switch_count = 0
         # limits of the unicycle model, set by attach_robot as in the original
         self.v_max_w0 = 0.0
         self.w_max_v0 = 0.0
@@ -50,7 +102,12 @@ class Supervisor:
         self.w_min_v0 = 0.0
         # the last (v, w) a controller returned, before ensure_w (plotted by the viewer)
         self.outputs: tuple[float, float] | None = None
-        self.events = {"at_goal": self.at_goal}
+        self.events = {
+            "at_goal": self.at_goal,
+            "at_obstacle": self.at_obstacle,
+            "unsafe": self.unsafe,
+            "obstacle_cleared": self.obstacle_cleared,
+        }
 
     # -- controllers and states -------------------------------------------------------------
     def add_controller(self, controller: Controller) -> Controller:
@@ -59,24 +116,49 @@ class Supervisor:
         return controller
 
     def switch_to_state(self, name: str) -> None:
-        """Make the controller called `name` the current one (nothing happens if it already is)."""
+        """Make the controller called `name` the current one; nothing happens if it already is.
+
+        A switch resets the new controller's memory (`reset()`) and adds one to `switch_count`, as the
+        original did from week 5. An unknown name raises UnknownNameError with your file and line."""
+        if not isinstance(name, str) or name not in self.controllers:
+            raise _unknown("state", name, list(self.controllers))
         if name == self.current_state:
             return
-        if name not in self.controllers:
-            raise ValueError(f"no state exists with name {name!r} (states: {', '.join(self.controllers)})")
+        previous = self.current_state
         self.current_controller = self.controllers[name]
         self.current_state = name
+        self.current_controller.reset()
+        if previous is not None:
+            self.switch_count += 1
 
     def check_event(self, name: str) -> bool:
-        """Evaluate the event called `name` (e.g. "at_goal")."""
-        if name not in self.events:
-            raise ValueError(f"no event exists with name {name!r}")
+        """Evaluate the event called `name`: "at_goal", "at_obstacle", "unsafe" or "obstacle_cleared".
+
+        An unknown name raises UnknownNameError with your file and line (the original returned false)."""
+        if not isinstance(name, str) or name not in self.events:
+            raise _unknown("event", name, list(self.events))
         return bool(self.events[name]())
 
     def at_goal(self) -> bool:
         """True when the *estimated* position is closer than d_stop to the goal."""
         x, y, _ = self.state_estimate.unpack()
         return math.hypot(x - self.goal[0], y - self.goal[1]) < self.d_stop
+
+    def at_obstacle(self) -> bool:
+        """True when any of the five IR distances is under d_at_obs (the side sensors count too)."""
+        return any(d < self.d_at_obs for d in self._ir_distances())
+
+    def unsafe(self) -> bool:
+        """True when any of the five IR distances is under d_unsafe."""
+        return any(d < self.d_unsafe for d in self._ir_distances())
+
+    def obstacle_cleared(self) -> bool:
+        """True when all five IR distances are over d_at_obs."""
+        return all(d > self.d_at_obs for d in self._ir_distances())
+
+    def _ir_distances(self) -> list:
+        # the original looks at ir_distances(1:5): all five sensors, sides included
+        return list(self.robot.get_ir_distances())[:5]
 
     def inputs(self) -> Inputs:
         """The inputs every controller gets: v, the goal (x_g, y_g), theta_d, direction (= fw_direction)
