@@ -28,6 +28,25 @@ class WheelTicks:
     left: int = 0
 
 
+def norm2(*components: float) -> float:
+    """The length of a vector as the original's `norm` computed it (Octave's scaled 2-norm).
+
+    scl * sqrt(sum((|x_i| / scl)^2)), accumulated in order: it differs from math.hypot in the last bit
+    for about 40 % of 2-vectors, and the recorded runs of weeks 6-7 follow it step for step."""
+    scl, total = 0.0, 1.0
+    for value in components:
+        t = abs(value)
+        if scl == t:
+            total += 1.0
+        elif scl < t:
+            total *= (scl / t) * (scl / t)
+            total += 1.0
+            scl = t
+        elif t != 0:
+            total += (t / scl) * (t / scl)
+    return scl * math.sqrt(total)
+
+
 class UnknownNameError(ValueError):
     """switch_to_state or check_event got a name that is no state or event of this supervisor."""
 
@@ -56,7 +75,9 @@ def _unknown(kind: str, name: object, known: list[str]) -> UnknownNameError:
     """The error for a name that is not a state (or event): where, what, and the closest known name."""
     shown = repr(name) if len(repr(name)) <= 80 else repr(name)[:77] + "..."
     if not isinstance(name, str):
-        text = f"a {kind} name is a string such as {known[0]!r}, not {type(name).__name__} {shown}"
+        article = "an" if kind[0] in "aeiou" else "a"
+        example = f" such as {known[0]!r}" if known else ""
+        text = f"{article} {kind} name is a string{example}, not {type(name).__name__} {shown}"
     else:
         text = f"no {kind} exists with name {shown} (the {kind}s are: {', '.join(known)})"
         close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
@@ -142,7 +163,7 @@ class Supervisor:
     def at_goal(self) -> bool:
         """True when the *estimated* position is closer than d_stop to the goal."""
         x, y, _ = self.state_estimate.unpack()
-        return math.hypot(x - self.goal[0], y - self.goal[1]) < self.d_stop
+        return norm2(x - self.goal[0], y - self.goal[1]) < self.d_stop
 
     def at_obstacle(self) -> bool:
         """True when any of the five IR distances is under d_at_obs (the side sensors count too)."""

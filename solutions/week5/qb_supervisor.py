@@ -1,18 +1,27 @@
-"""QBSupervisor for week 4: wander the arena with AvoidObstacles (or drive to the goal with GoToGoal).
+"""QBSupervisor for week 5: drive to the goal around obstacles, blending or switching between controllers.
 
-Test settings (the manual's "How to test it all"): edit v in __init__; `state` picks the controller
-that runs ("avoid_obstacles" by default, "go_to_goal" drives to `goal` and stops within `d_stop`).
-ensure_w is provided this week: it keeps both wheels inside the motors' range [min_vel, max_vel]
-(the motors stall below min_vel).
+Two ways to get there (the manual, week 5):
+  * blending (`is_blending = True`, the default): AOandGTG steers along a blend of u_gtg and u_ao until
+    the robot is at the goal, then Stop;
+  * switching (`is_blending = False`): your block below picks the state each step from the events
+    at_goal, unsafe, at_obstacle (and obstacle_cleared): Stop, AvoidObstacles, AOandGTG or GoToGoal.
+Events look at all five IR sensors, the sides too: "at_obstacle" is any distance under d_at_obs (0.25 m),
+"unsafe" any under d_unsafe (0.10 m), "obstacle_cleared" all over d_at_obs; "at_goal" compares the
+*estimate* with the goal (d_stop 0.05 m). A switch resets the new controller and counts in
+`self.switch_count`.
 
-Student block and the placeholder the stub would get:
-  update_odometry (week 2, shipped filled in): `x_dt = 0`, `y_dt = 0`, `theta_dt = 0`.
+Test settings: edit v, goal and is_blending in __init__.
+
+Student block and the placeholder the stub gets:
+  execute (week 5): the switching. Placeholder: `self.switch_to_state("stop")` (the robot stays put).
+Shipped filled in: update_odometry (week 2). ensure_w is provided.
 """
 
 import math
 
 from simiam.control import Stop, Supervisor
 
+from .ao_and_gtg import AOandGTG
 from .avoid_obstacles import AvoidObstacles
 from .go_to_angle import GoToAngle
 from .go_to_goal import GoToGoal
@@ -29,7 +38,7 @@ def sign(x):
 
 
 class QBSupervisor(Supervisor):
-    """Runs AvoidObstacles (or GoToGoal until the estimate is within d_stop of the goal, then Stop)."""
+    """Blends (AOandGTG) or switches between GoToGoal, AvoidObstacles and AOandGTG until at the goal."""
 
     def __init__(self):
         super().__init__()
@@ -37,24 +46,45 @@ class QBSupervisor(Supervisor):
         self.add_controller(GoToAngle())
         self.add_controller(GoToGoal())
         self.add_controller(AvoidObstacles())
-        self.switch_to_state("avoid_obstacles")
+        self.add_controller(AOandGTG())
+        self.switch_to_state("ao_and_gtg")
 
         self.theta_d = math.pi / 4
-        # 0.15 m/s: the original's 0.9 (capped at 0.44 by ensure_w) and the manual's 0.2 both hit the
-        # L-shaped obstacle within 60 s; 0.15 avoids everything for the whole run.
         self.v = 0.15  # m/s
-        self.goal = (-1.0, 1.0)
+        # the manual's goal; the release's (-1, 1) makes the sp14 blend drive into the 60-degree bar
+        self.goal = (1.0, 1.0)
         self.d_stop = 0.05  # m
+        self.d_at_obs = 0.25  # m: an IR distance under this is "at an obstacle"
+        self.d_unsafe = 0.10  # m: under this, "unsafe"
+
+        # True: blend until at the goal; False: switch between the controllers (the block in execute)
+        self.is_blending = True
 
     def execute(self, dt):
-        """One step: odometry first, at_goal check, the controller, ensure_w, wheel speeds (week-4 order)."""
+        """One step: odometry, pick the state (blending or switching), the controller, ensure_w, speeds."""
         self.update_odometry()
 
         inputs = self.inputs()
 
-        # the goal only matters while going to it
-        if self.current_state == "go_to_goal" and self.check_event("at_goal"):
-            self.switch_to_state("stop")
+        if self.is_blending:
+            # blend until the robot is at the goal
+            if self.check_event("at_goal"):
+                self.switch_to_state("stop")
+            else:
+                self.switch_to_state("ao_and_gtg")
+        else:
+            # Switch between the controllers: at the goal stop; too close to an obstacle, only avoid it;
+            # near one, blend; in free space, go to the goal.
+            # START CODE BLOCK
+            if self.check_event("at_goal"):
+                self.switch_to_state("stop")
+            elif self.check_event("unsafe"):
+                self.switch_to_state("avoid_obstacles")
+            elif self.check_event("at_obstacle"):
+                self.switch_to_state("ao_and_gtg")
+            else:
+                self.switch_to_state("go_to_goal")
+            # END CODE BLOCK
 
         v, w = self.execute_controller(inputs, dt)
 
