@@ -5,7 +5,7 @@ go_to_goal), in the original's operation order, down to the bit:
 
 - an IR point reaches the world frame as the original's matrix product computed it (OpenBLAS dgemm with
   FMA): x_w = fl(fma(-sin th, y_r, fl(cos th * x_r)) + x), likewise y_w;
-- at_goal measures with Octave's scaled 2-norm (simiam.control.supervisor.norm2 follows the same rule;
+- at_goal measures with Octave's scaled 2-norm (simiam.control.norm follows the same rule;
   this module spells it out again so that the two are independent).
 
 It cross-checks the solutions on the recorded goals the golden files hold back (tests/fidelity) and is

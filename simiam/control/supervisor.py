@@ -11,12 +11,12 @@ printed "no state exists with name ..." and went on (check_event returned false)
 from __future__ import annotations
 
 import difflib
-import math
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 
 from simiam.control.controller import Controller, Inputs
+from simiam.control.norm import norm
 from simiam.control.pose import Pose2D
 
 
@@ -26,25 +26,6 @@ class WheelTicks:
 
     right: int = 0
     left: int = 0
-
-
-def norm2(*components: float) -> float:
-    """The length of a vector as the original's `norm` computed it (Octave's scaled 2-norm).
-
-    scl * sqrt(sum((|x_i| / scl)^2)), accumulated in order: it differs from math.hypot in the last bit
-    for about 40 % of 2-vectors, and the recorded runs of weeks 6-7 follow it step for step."""
-    scl, total = 0.0, 1.0
-    for value in components:
-        t = abs(value)
-        if scl == t:
-            total += 1.0
-        elif scl < t:
-            total *= (scl / t) * (scl / t)
-            total += 1.0
-            scl = t
-        elif t != 0:
-            total += (t / scl) * (t / scl)
-    return scl * math.sqrt(total)
 
 
 class UnknownNameError(ValueError):
@@ -163,7 +144,8 @@ class Supervisor:
     def at_goal(self) -> bool:
         """True when the *estimated* position is closer than d_stop to the goal."""
         x, y, _ = self.state_estimate.unpack()
-        return norm2(x - self.goal[0], y - self.goal[1]) < self.d_stop
+        # the original's norm (Octave's scaled 2-norm), not math.hypot: the last bit can decide a step
+        return norm((x - self.goal[0], y - self.goal[1])) < self.d_stop
 
     def at_obstacle(self) -> bool:
         """True when any of the five IR distances is under d_at_obs (the side sensors count too)."""

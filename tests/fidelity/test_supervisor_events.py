@@ -16,7 +16,8 @@ from week5_setup import WEEK5
 
 from simiam.control import Controller, Stop, Supervisor
 from simiam.control.local_brain import LocalBrain
-from simiam.control.supervisor import UnknownNameError, norm2
+from simiam.control.norm import norm
+from simiam.control.supervisor import UnknownNameError
 from simiam.course.loader import load_submission
 
 READINGS = {"t": 0.05, "dt": 0.05, "ticks": [0, 0], "ir_raw": [133, 133, 133, 133, 133]}
@@ -137,19 +138,19 @@ def test_a_wrong_name_from_the_settings_is_not_blamed_on_the_student():
 
 
 def test_at_goal_measures_with_octaves_norm():
-    """u_fw_tp = u_fw_t / norm(u_fw_t) in the recorded FollowWall vectors: norm2 reproduces every row,
+    """u_fw_tp = u_fw_t / norm(u_fw_t) in the recorded FollowWall vectors: norm reproduces every row,
     math.hypot (the wrong version: the port's first at_goal) misses some in the last bit."""
     with (GOLDEN / "followwall_vectors.csv").open() as f:
         rows = [r for r in csv.DictReader(f) if (float(r["u_fw_t_x"]), float(r["u_fw_t_y"])) != (0.0, 0.0)]
 
-    def misses(norm) -> int:
+    def misses(length) -> int:
         out = 0
         for r in rows:
             t = (float(r["u_fw_t_x"]), float(r["u_fw_t_y"]))
-            out += (t[0] / norm(*t), t[1] / norm(*t)) != (float(r["u_fw_tp_x"]), float(r["u_fw_tp_y"]))
+            out += (t[0] / length(t), t[1] / length(t)) != (float(r["u_fw_tp_x"]), float(r["u_fw_tp_y"]))
         return out
 
-    assert len(rows) >= 50 and misses(norm2) == 0 and misses(math.hypot) > 0
+    assert len(rows) >= 50 and misses(norm) == 0 and misses(lambda t: math.hypot(*t)) > 0
     sup = _supervisor()
     sup.goal = (0.0, 0.05)
     sup.d_stop = 0.05
