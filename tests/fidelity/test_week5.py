@@ -33,13 +33,12 @@ from week5_setup import WEEK5
 from simiam.control import Inputs, Pose2D, RobotView
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
-from simiam.robot.quickbot import spec_for_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
 
 ROOT = Path(__file__).resolve().parents[2]
 SOLUTION = ROOT / "solutions/week5"
-SPEC = spec_for_week(5)
+SPEC = WEEK5.spec
 TOL = 1e-6
 OPEN_LOOP_TOL = 1e-9
 CLOSED_LOOPS = ("aoandgtg_closed_loop_dt0.05.csv", "aoandgtg_closed_loop_dt0.033.csv",
