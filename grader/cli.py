@@ -24,10 +24,9 @@ from grader.result import all_passed
 from grader.terminal import print_result
 from grader.untrusted import printable
 from simiam.course.folders import WeekFolderNotFound, week_folder
+from simiam.course.weeks import get_week, week_numbers
 
 __all__ = ["main", "print_result"]
-
-WEEKS = (1, 2, 3, 4)
 PLATFORM_COMMANDS = ("handout", "package", "selfcheck")   # grader.platforms.cli parses these
 
 
@@ -37,7 +36,7 @@ def _parser() -> argparse.ArgumentParser:
         epilog="Instructors: grade handout weekN, grade package gradescope|prairielearn weekN, "
                "grade selfcheck (grade handout --help, ...; see docs/platforms.md).",
     )
-    p.add_argument("week", help="week1 .. week4, or all")
+    p.add_argument("week", help=f"week{min(week_numbers())} .. week{max(week_numbers())}, or all")
     p.add_argument("path", nargs="?", default=None, help="submission folder (default: the current folder "
                    "if named weekN, else ./weekN, else ./assignments/weekN)")
     p.add_argument("--solutions", action="store_true", help="grade solutions/weekN (the reference solutions)")
@@ -76,10 +75,11 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _week(text: str) -> int:
-    number = text.lower().removeprefix("week")
-    if not number.isdigit() or int(number) not in WEEKS:
-        raise ValueError(f"unknown week {text!r}: use week1, week2, week3, week4 or all")
-    return int(number)
+    """The number of a declared week (ValueError naming the weeks there are, or all)."""
+    try:
+        return get_week(text).number
+    except ValueError as exc:
+        raise ValueError(f"{exc}, or all") from None
 
 
 def _folder(args: argparse.Namespace, week: int, many: bool) -> Path:
@@ -143,7 +143,7 @@ def main(argv: list[str] | None = None) -> int:
               "where it works as on Linux", file=sys.stderr)
         return 2
     try:
-        weeks = list(WEEKS) if args.week.lower() == "all" else [_week(args.week)]
+        weeks = list(week_numbers()) if args.week.lower() == "all" else [_week(args.week)]
         if args.case and not args.check:
             raise ValueError("--case needs --check ID (the check whose case you replay)")
         if args.batch:

@@ -126,7 +126,7 @@ def _splice(week: int, submission: Path, tmp: Path) -> tuple[Path, dict[str, lis
 
 def _load_problems(week: int, loaded: dict) -> dict[str, list[str]]:
     """Problems by student file from the worker's load report (untrusted: only strings are kept)."""
-    from simiam.course.weeks import week_config
+    from simiam.course.weeks import get_week
 
     modules = loaded.get("modules", {})
     errors = []
@@ -136,7 +136,7 @@ def _load_problems(week: int, loaded: dict) -> dict[str, list[str]]:
         message = e.get("message") if isinstance(e.get("message"), str) else "could not be loaded"
         errors.append((file, f"{file}:{line}: {message}" if line else f"{file}: {message}".lstrip(": ")))
     problems: dict[str, list[str]] = {}
-    for file in week_config(week).student_files:
+    for file in get_week(week).student_files:
         own = [text for f, text in errors if f == file]
         if own:
             problems[file] = own

@@ -18,10 +18,10 @@ from grader.untrusted import printable
 _HEAD = """from simiam.control import Pose2D, RobotView
 from simiam.control.controller import Inputs
 from simiam.course.loader import load_submission
-from simiam.course.weeks import week_config
+from simiam.course.weeks import get_week
 
 sub = load_submission({folder!r}, {week})
-robot = RobotView(week_config({week}).spec, sub)
+robot = RobotView(get_week({week}).spec, sub)
 """
 
 

@@ -5,18 +5,22 @@ from __future__ import annotations
 import argparse
 import sys
 
+from simiam.course.weeks import week_numbers
+
 
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="simiam", description="Sim.I.am QuickBot simulator (Python port)")
     sub = p.add_subparsers(dest="command", required=True)
+    weeks = week_numbers()
 
     run = sub.add_parser("run", help="run a week's scenario headless and write a trace and a replay page")
-    run.add_argument("week", help="week1 .. week4")
+    run.add_argument("week", help=f"week{weeks[0]} .. week{weeks[-1]}")
     run.add_argument("path", nargs="?", default=None, help="submission folder (default: the current folder "
                      "if named weekN, else ./weekN, else ./assignments/weekN)")
     run.add_argument("--solutions", action="store_true", help="use solutions/weekN")
     run.add_argument("--seconds", type=float, default=None, help="simulated time (default: the week's)")
-    run.add_argument("--dt", type=float, default=0.033, help="time step in seconds (0.033 or 0.05)")
+    run.add_argument("--dt", type=float, default=None,
+                     help="time step in seconds (default: the week's, 0.033; the original also ran 0.05)")
     run.add_argument("--out", default="runs", help="output folder (default ./runs)")
     run.add_argument("--world", default=None, help="world file to use instead of the week's")
 

@@ -21,7 +21,8 @@ from simiam.control.local_brain import LocalBrain
 from simiam.control.supervisor import Supervisor
 from simiam.course.folders import WeekFolderNotFound, week_folder
 from simiam.course.loader import load_submission, locate_in_folder
-from simiam.course.weeks import WeekConfig, week_config
+from simiam.course.week import Week
+from simiam.course.weeks import get_week
 from simiam.run_limit import StepTimeout, step_limit, stuck_at
 from simiam.simulator import BrainError, Simulator, add_row
 from simiam.trace import Trace
@@ -31,7 +32,7 @@ MAX_STEPS = 1_000_000  # 9 simulated hours at 0.033 s; a trace of that size is a
 STEP_SECONDS = 2.0  # wall time one step of the student's code may take (grade's limit per call)
 
 
-def resolve_folder(week: WeekConfig, path: str | None, solutions: bool) -> Path:
+def resolve_folder(week: Week, path: str | None, solutions: bool) -> Path:
     """The submission folder: PATH, or the checkout's solutions/weekN, or the default rule shared with
     `grade` and `simiam migrate` (simiam.course.folders: this folder if named weekN, ./weekN,
     ./assignments/weekN). Raises WeekFolderNotFound with a message for the student."""
@@ -46,14 +47,16 @@ def _fail(message: str, code: int) -> int:
 def main(args: argparse.Namespace) -> int:
     """Run `simiam run` with parsed arguments (week, path, solutions, seconds, dt, out, world)."""
     try:
-        week = week_config(args.week)
+        week = get_week(args.week)
     except ValueError as exc:
         return _fail(f"simiam run: {exc}", 2)
     if args.path and args.solutions:
         return _fail("simiam run: give either a folder or --solutions, not both", 2)
-    if not (math.isfinite(args.dt) and args.dt > 0):
-        return _fail(f"simiam run: --dt must be a positive number of seconds, got {args.dt}", 2)
-    seconds = week.seconds if args.seconds is None else args.seconds
+    dt = week.dt if getattr(args, "dt", None) is None else args.dt
+    if not (math.isfinite(dt) and dt > 0):
+        return _fail(f"simiam run: --dt must be a positive number of seconds, got {dt}", 2)
+    args.dt = dt
+    seconds = week.seconds if args.seconds is None else args.seconds  # the length grade's scenario runs
     if not (math.isfinite(seconds) and seconds > 0):
         return _fail(f"simiam run: --seconds must be positive, got {seconds}", 2)
     steps = seconds / args.dt
@@ -80,7 +83,7 @@ def main(args: argparse.Namespace) -> int:
         return _run(args, week, folder, run_folder, world, seconds)
 
 
-def fill_missing_files(week: WeekConfig, folder: Path, tmp: Path) -> tuple[Path, list[str]]:
+def fill_missing_files(week: Week, folder: Path, tmp: Path) -> tuple[Path, list[str]]:
     """`folder`, or a copy of it under `tmp` with the files the student writes nothing in this week filled
     in where they are missing, as `grade` does; and what to tell the student about each."""
     from simiam.course.shipped import files_to_write, missing_note, shipped_version
@@ -104,7 +107,7 @@ def fill_missing_files(week: WeekConfig, folder: Path, tmp: Path) -> tuple[Path,
     return copy, notes
 
 
-def _run(args: argparse.Namespace, week: WeekConfig, folder: Path, run_folder: Path, world, seconds: float
+def _run(args: argparse.Namespace, week: Week, folder: Path, run_folder: Path, world, seconds: float
          ) -> int:
     """The run itself, on `run_folder` (the student's folder, or its copy with missing files filled in);
     messages name the student's own `folder`."""
@@ -190,7 +193,7 @@ def _stuck(exc: StepTimeout, folder: Path, when: str) -> str:
     return f"{why}; it was still running at {where} (an endless loop or a long wait?)" if where else why
 
 
-def outside_edit_notes(week: WeekConfig, folder: Path) -> list[str]:
+def outside_edit_notes(week: Week, folder: Path) -> list[str]:
     """The edits outside the code blocks, as `grade` lists them (against the same packaged skeletons):
     `simiam run` runs them, `grade` does not."""
     from simiam.course.blocks import BlockError
@@ -222,8 +225,9 @@ def _write_replay(trace_json: dict, path: Path) -> Path | None:
     return write_replay(trace_json, path)
 
 
-def summary(week: WeekConfig, folder: Path, trace: Trace, sup: Supervisor) -> str:
-    """One paragraph: final pose, estimate, collision, and the goal (weeks 3-4) or heading (week 2)."""
+def summary(week: Week, folder: Path, trace: Trace, sup: Supervisor) -> str:
+    """One paragraph: final pose, estimate, collision, then the goal (a run with one), the heading
+    (a week whose `summary` names it) or the distance driven."""
     s = trace.steps
     n = len(trace) - 1
     x, y, theta = s["x"][-1], s["y"][-1], s["theta"][-1]
@@ -247,7 +251,7 @@ def summary(week: WeekConfig, folder: Path, trace: Trace, sup: Supervisor) -> st
         reached = "reached" if d < sup.d_stop else "not reached"
         parts.append(f"Goal ({trace.goal[0]:g}, {trace.goal[1]:g}) {reached}: the robot {when}, "
                      f"{d:.3f} m from it (d_stop = {sup.d_stop:g}).")
-    elif week.number == 2:
+    elif "heading" in week.summary:
         err = math.atan2(math.sin(sup.theta_d - theta), math.cos(sup.theta_d - theta))
         parts.append(f"Heading error to theta_d = {sup.theta_d:.3f}: {err:+.3f} rad.")
     else:

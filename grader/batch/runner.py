@@ -45,6 +45,7 @@ from grader.batch.submissions import Student, Submission, discover, pack, read_s
 from grader.batch.summary import write_summary
 from grader.result_size import bound_html, bound_result
 from grader.untrusted import printable
+from simiam.course.weeks import get_week, week_numbers
 
 # grade_submission bounds each student check with its own timeouts; this budget only catches a grading
 # process that hangs or thrashes as a whole.
@@ -100,11 +101,11 @@ class BatchOptions:
 
 
 def parse_week(value: object) -> int:
-    """3, "3" or "week3" -> 3."""
-    text = str(value).lower().removeprefix("week")
-    if not text.isdigit():
-        raise BatchError(f"unknown week {value!r}: use week1 .. week4")
-    return int(text)
+    """3, "3" or "week3" -> 3 (a declared week; BatchError naming the weeks there are)."""
+    try:
+        return get_week(str(value)).number
+    except ValueError as exc:
+        raise BatchError(str(exc)) from None
 
 
 def main(args: argparse.Namespace) -> int:
@@ -149,8 +150,9 @@ def run_batch(options: BatchOptions, grade_fn: Callable[[dict], dict] | str | No
     """
     if not options.batch_dir.is_dir():
         raise BatchError(f"{options.batch_dir} is not a folder of submissions")
-    if options.week not in (1, 2, 3, 4):
-        raise BatchError(f"there is no week {options.week}; weeks are 1 to 4")
+    if options.week not in week_numbers():
+        raise BatchError(f"there is no week {options.week}; the course has weeks "
+                         f"{', '.join(map(str, week_numbers()))}")
     out = options.out.resolve()
     if out == options.batch_dir.resolve():
         raise BatchError("--out must not be the class folder itself; choose another folder")

@@ -8,12 +8,12 @@ from grader import scenarios
 from grader.checks import Check, Context, Outcome
 
 NEEDS = ("differential_drive.py", "quickbot.py", "qb_supervisor.py")
-SECONDS = 3.0
 
 
 def _run(ctx: Context) -> scenarios.Run:
     if "week1" not in ctx.memo:
-        ctx.memo["week1"] = scenarios.run(ctx, "week 1 world", {}, SECONDS)
+        ctx.memo["week1"] = scenarios.run(ctx, "week 1 world", ctx.config.settings.as_dict(),
+                                          ctx.config.seconds)
         scenarios.keep(ctx, "week1.run.headless", ctx.memo["week1"])
     return ctx.memo["week1"]
 

@@ -183,8 +183,8 @@ def ir_simulator(ctx: Context) -> Outcome:
 
 
 def go_to_angle_check(hidden: bool):
-    """Week 2: go-to-angle turns the TRUE heading to theta_d (within ANGLE_TOLERANCE after 8 s, no
-    collision)."""
+    """Week 2: go-to-angle turns the TRUE heading to theta_d (within ANGLE_TOLERANCE after the week's
+    run length, 8 s; no collision), at the week's v."""
 
     def go_to_angle(ctx: Context) -> Outcome:
         if hidden:
@@ -195,7 +195,8 @@ def go_to_angle_check(hidden: bool):
         good, lines, runs = 0, [], []
         details: dict[str, list] = {"runs": []}
         for theta_d in angles:
-            r = scenarios.run(ctx, f"theta_d = {theta_d:.3f}", {"theta_d": theta_d, "v": 0.1}, 8.0)
+            settings = ctx.config.settings.with_changes(theta_d=theta_d).as_dict()
+            r = scenarios.run(ctx, f"theta_d = {theta_d:.3f}", settings, ctx.config.seconds)
             runs.append(r)
             scenarios.keep(ctx, "week2.go_to_angle." + ("other_angles" if hidden else "reaches_theta_d"), r)
             err = ref.angle_diff(r.final_pose[2], theta_d)

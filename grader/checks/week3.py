@@ -20,9 +20,9 @@ from grader.properties import run_property
 
 SUPERVISOR = ("qb_supervisor.py",)
 ALL = ("differential_drive.py", "quickbot.py", "go_to_angle.py", "go_to_goal.py", "qb_supervisor.py")
-V = 0.2
-D_STOP = 0.05  # the course's arrival radius, judged on the TRUE position
-ROBOT_D_STOP = 0.02  # the supervisor stops a little inside it, so odometry drift cannot stop it just outside
+# The week's v, goal and d_stop (the course's arrival radius, judged on the TRUE position) and run length
+# come from its declaration (simiam/course/weeks/week3.py, ctx.config).
+ROBOT_D_STOP = 0.02  # the supervisor stops a little inside d_stop, so odometry drift cannot stop it outside
 SETTLE_LIMIT = 3.0
 OVERSHOOT_LIMIT = 0.10
 REACH_HINT = (
@@ -134,12 +134,14 @@ def seeded_goals(
     return goals
 
 
-def _go(ctx: Context, check_id: str, goal: tuple[float, float], seconds: float) -> scenarios.Run:
-    key = ("goal", goal, seconds)
+def _go(ctx: Context, check_id: str, goal: tuple[float, float]) -> scenarios.Run:
+    week = ctx.config
+    key = ("goal", goal, week.seconds)
     if key not in ctx.memo:
-        settings = {"goal": list(goal), "v": V, "d_stop": ROBOT_D_STOP, "state": "go_to_goal"}
+        settings = week.settings.with_changes(goal=list(goal), d_stop=ROBOT_D_STOP, state="go_to_goal")
         ctx.memo[key] = scenarios.run(
-            ctx, f"goal ({goal[0]:g}, {goal[1]:g})", settings, seconds, goal=goal, goal_radius=D_STOP
+            ctx, f"goal ({goal[0]:g}, {goal[1]:g})", settings.as_dict(), week.seconds, goal=goal,
+            goal_radius=week.settings.d_stop,
         )
         scenarios.keep(ctx, check_id, ctx.memo[key])
     return ctx.memo[key]
@@ -156,7 +158,7 @@ def reach_goals(hidden: bool):
         )
         reached, lines, runs, done = 0, [], [], []
         for goal in goals:
-            r = _go(ctx, check_id, goal, 30.0)
+            r = _go(ctx, check_id, goal)
             done.append(r)
             ok = r.reached and r.collision is None and not r.problem
             reached += ok
@@ -183,7 +185,7 @@ def reach_goals(hidden: bool):
 
 
 def _tracking(ctx: Context, check_id: str, goal: tuple[float, float]) -> tuple[scenarios.Run, dict]:
-    r = _go(ctx, check_id, goal, 30.0)  # the reach run to the same goal, when there is one
+    r = _go(ctx, check_id, goal)  # the reach run to the same goal, when there is one
     settle, overshoot = scenarios.settle_and_overshoot(r.trace, goal)
     return r, {
         "goal": list(goal),

@@ -29,8 +29,7 @@ ALL = (
     "avoid_obstacles.py",
     "qb_supervisor.py",
 )
-V = 0.15  # the scenario's speed (the original's 0.9 is capped by ensure_w and crashes its own AO)
-SECONDS = 60.0
+# The scenario's v and first state and its length come from the week's declaration (ctx.config).
 HIDDEN_SECONDS = 30.0  # each hidden variant was checked for 60 s with the reference solution
 MIN_PATH = 1.0  # "really moving": at least this many metres driven in the run
 POSE = [0.3, -0.2, 0.7]
@@ -141,7 +140,7 @@ def _u_ao(ctx: Context, distances: list, pose: list = POSE) -> tuple[np.ndarray,
 
 def _avoid_once(ctx: Context, distances: list, pose: list) -> tuple[np.ndarray, np.ndarray, dict]:
     """One AvoidObstacles.execute: u_ao, the vectors to the student's own IR points, and the raw answer."""
-    answer = ctx.probe("avoid_obstacles", distances=distances, pose=pose, v=V)
+    answer = ctx.probe("avoid_obstacles", distances=distances, pose=pose, v=ctx.config.settings.v)
     if not isinstance(answer, dict):
         raise Mismatch("AvoidObstacles.execute gave no answer")
     where = f"with IR distances {', '.join(fmt(d) for d in distances)}"
@@ -286,8 +285,7 @@ def _variant(world: World, turn: int, of: int, mirror: bool) -> World:
 def _avoid(
     ctx: Context, check_id: str, world: World, label: str, seconds: float
 ) -> tuple[bool, str, dict, scenarios.Run]:
-    settings = {"v": V, "state": "avoid_obstacles"}
-    r = scenarios.run(ctx, label, settings, seconds, world=world)
+    r = scenarios.run(ctx, label, ctx.config.settings.as_dict(), seconds, world=world)
     scenarios.keep(ctx, check_id, r)
     length = r.metrics["path_length"]
     details = {
@@ -314,9 +312,10 @@ def _avoid(
 
 def week4_world(ctx: Context) -> Outcome:
     ok, text, details, r = _avoid(
-        ctx, "week4.avoid.week4_world", load_world("week4"), "week-4 world", SECONDS
+        ctx, "week4.avoid.week4_world", load_world(ctx.config.world), "week-4 world", ctx.config.seconds
     )
-    return Outcome(float(ok), f"week-4 world, v = {V}: {text}", details, status=scenarios.status_of([r]))
+    return Outcome(float(ok), f"week-4 world, v = {ctx.config.settings.v}: {text}", details,
+                   status=scenarios.status_of([r]))
 
 
 def other_starts(ctx: Context) -> Outcome:

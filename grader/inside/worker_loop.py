@@ -59,10 +59,10 @@ class _Worker:
 
     def op_brain_start(self, request: dict) -> Any:
         from simiam.control.local_brain import LocalBrain
-        from simiam.course.weeks import week_config
+        from simiam.course.weeks import get_week
 
         self.brain = None
-        self.brain = LocalBrain(self.submission(), week_config(self.week), request.get("settings") or None)
+        self.brain = LocalBrain(self.submission(), get_week(self.week), request.get("settings") or None)
         return None
 
     def op_brain_step(self, request: dict) -> Any:

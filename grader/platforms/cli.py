@@ -15,15 +15,17 @@ import argparse
 import sys
 from pathlib import Path
 
+from simiam.course.weeks import get_week, week_numbers
+
 COMMANDS = ("handout", "package", "selfcheck")
-WEEKS = (1, 2, 3, 4)
 
 
 def _week(text: str) -> int:
-    number = text.lower().removeprefix("week")
-    if not number.isdigit() or int(number) not in WEEKS:
-        raise argparse.ArgumentTypeError(f"unknown week {text!r}: use week1 .. week4")
-    return int(number)
+    """The number of a declared week (argparse's error names the weeks there are)."""
+    try:
+        return get_week(text).number
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -48,7 +50,7 @@ def _parser() -> argparse.ArgumentParser:
     k.add_argument("--timeout", type=int, default=120, help="PrairieLearn: seconds per grading job (max 600)")
     s = sub.add_parser("selfcheck", help="solutions, stubs and kept wrong versions grade as meant")
     s.add_argument("--course", type=Path, default=None, help="the course checkout (default: here)")
-    s.add_argument("--weeks", default="1,2,3,4", help="comma-separated weeks (default all)")
+    s.add_argument("--weeks", default=None, help="comma-separated weeks (default: every week of the course)")
     s.add_argument("--wrong", type=Path, default=None,
                    help="folder of wrong versions (default COURSE/tests/data/wrong)")
     s.add_argument("--seed", type=int, default=None, help="grading seed (default the grader's)")
@@ -74,7 +76,8 @@ def main(argv: list[str]) -> int:
             return _package(args, course)
         from grader.platforms.selfcheck import run_selfcheck
 
-        weeks = [_week(w.strip()) for w in args.weeks.split(",") if w.strip()]
+        weeks = ([_week(w.strip()) for w in args.weeks.split(",") if w.strip()] if args.weeks is not None
+                 else list(week_numbers()))
         return run_selfcheck(course, weeks, wrong=args.wrong, seed=args.seed)
     except (CourseNotFound, HandoutLeak, WheelBuildFailed, ValueError, argparse.ArgumentTypeError) as exc:
         print(f"grade {args.command}: {exc}", file=sys.stderr)

@@ -7,41 +7,43 @@ from __future__ import annotations
 
 import math
 import numbers
+from typing import TYPE_CHECKING
 
 from simiam.control.pose import Pose2D
 from simiam.control.robot_view import RobotView
 
-# settings that are plain attributes of the supervisor (week 5: the event thresholds and is_blending;
-# week 6: the follow-wall distance and side)
-_ATTRIBUTES = ("v", "goal", "d_stop", "theta_d", "d_at_obs", "d_unsafe", "is_blending", "d_fw",
-               "fw_direction")
+if TYPE_CHECKING:
+    from simiam.course.week import Week
+
+# settings that are not plain attributes of the supervisor (every other one is, e.g. v, goal, d_fw)
+_NOT_ATTRIBUTES = ("state", "gains")
 
 
 class LocalBrain:
     """Builds a RobotView and the student's QBSupervisor and steps them with the simulator's readings.
 
     `settings` overrides what the student's QBSupervisor.__init__ set: `v`, `goal` (x, y), `d_stop`,
-    `theta_d`, `d_at_obs`, `d_unsafe`, `is_blending` (week 5), `d_fw`, `fw_direction` (week 6), the initial
-    `state` (a controller name such as "go_to_goal"), and controller gains as
+    `theta_d` and any other supervisor attribute a week declares (`SupervisorSettings.extra`: week 5's
+    `d_at_obs`, `d_unsafe`, `is_blending`, week 6's `d_fw`, `fw_direction`), the initial `state` (a
+    controller name such as "go_to_goal"), and controller gains as
     `{"gains": {"go_to_goal": {"Kp": 4, "Ki": 0.01, "Kd": 0.01}}}` (a top-level
     `{"go_to_goal": {...}}` is accepted too). `start` is where the estimate starts (default: the week's).
     """
 
-    def __init__(self, submission, week_config, settings: dict | None = None,
+    def __init__(self, submission, week: Week, settings: dict | None = None,
                  start: tuple[float, float, float] | None = None) -> None:
-        self.week = week_config
-        self.robot = RobotView(week_config.spec, submission)
+        self.week = week
+        self.robot = RobotView(week.spec, submission)
         supervisor_class = submission.module("qb_supervisor").QBSupervisor
         self.supervisor = supervisor_class()
-        self.supervisor.attach_robot(self.robot, Pose2D(*(start or week_config.start)))
+        self.supervisor.attach_robot(self.robot, Pose2D(*(start or week.start)))
         self.apply_settings(settings or {})
 
     def apply_settings(self, settings: dict) -> None:
         """Override the supervisor's settings and controller gains (see the class docstring)."""
         sup = self.supervisor
-        for key in _ATTRIBUTES:
-            if key in settings:
-                value = settings[key]
+        for key, value in settings.items():
+            if key not in _NOT_ATTRIBUTES and key not in sup.controllers:
                 setattr(sup, key, tuple(value) if key == "goal" else value)
         gains = dict(settings.get("gains") or {})
         gains.update({k: v for k, v in settings.items() if k in sup.controllers and isinstance(v, dict)})

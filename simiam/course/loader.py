@@ -145,14 +145,14 @@ def locate_in_folder(exc: BaseException, folder: Path) -> tuple[str | None, int 
 
 
 def load_submission(folder: Path | str, week) -> Submission:
-    """Import the student files of `week` (a WeekConfig or a week number) from `folder`.
+    """Import the student files of `week` (a Week or a week number) from `folder`.
 
     Files are imported in the week's order; each missing file, syntax error, import-time exception
     and missing function or class becomes one LoadError. Modules that imported are in `modules`.
     """
-    from simiam.course.weeks import week_config
+    from simiam.course.weeks import get_week
 
-    config = week_config(week) if isinstance(week, int) else week
+    config = get_week(week) if isinstance(week, int) else week
     folder = Path(folder).resolve()
     sub = Submission(folder=folder, package="")
     if not folder.is_dir():

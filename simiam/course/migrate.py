@@ -26,6 +26,7 @@ from simiam.course.folders import WeekFolderNotFound, default_week_folder, week_
 from simiam.course.placeholders import placeholder_for
 from simiam.course.shipped_blocks import SHIPPED
 from simiam.course.splice import check_body, read_submission_file
+from simiam.course.weeks import get_week, week_numbers
 
 EXIT_OK, EXIT_REFUSED, EXIT_USAGE = 0, 1, 2
 
@@ -277,11 +278,6 @@ def migrate(week: int, source: Path, target: Path, dry_run: bool = False) -> Mig
     return mig
 
 
-def _week(text: str) -> int | None:
-    t = str(text).strip().lower().removeprefix("week")
-    return int(t) if t.isdigit() else None
-
-
 def _source_folder(given: str, last_week: int) -> Path:
     """--from: the folder given; a bare `weekN` that is no folder here is looked for by the default rule
     (./weekN, ./assignments/weekN), so `--from week3` works in the checkout and in a course folder."""
@@ -296,11 +292,17 @@ def _source_folder(given: str, last_week: int) -> Path:
 
 def main(args: argparse.Namespace) -> int:
     """`simiam migrate` (args: week, source, target, dry_run). Exit 0 done, 1 refused, 2 bad arguments."""
-    week = _week(args.week)
-    if week not in SHIPPED or week == min(SHIPPED):
-        print(
-            f"simiam migrate: no week {args.week!r} to migrate into (week2, week3 or week4)", file=sys.stderr
-        )
+    later = ", ".join(f"week{n}" for n in week_numbers()[1:])
+    try:
+        week = get_week(args.week).number
+    except ValueError:
+        week = None
+    if week is None or week == week_numbers()[0]:
+        print(f"simiam migrate: no week {args.week!r} to migrate into ({later})", file=sys.stderr)
+        return EXIT_USAGE
+    if week not in SHIPPED or week - 1 not in SHIPPED:
+        print(f"simiam migrate: the course's list of shipped blocks has no week{week} yet "
+              "(instructors: python -m simiam.course.stubs)", file=sys.stderr)
         return EXIT_USAGE
     try:
         source = _source_folder(args.source, week - 1)

@@ -21,8 +21,8 @@ from pathlib import Path
 
 from simiam.course.blocks import BlockError, find_blocks, fingerprint, replace_bodies
 from simiam.course.placeholders import placeholder_for
+from simiam.course.weeks import get_week, week_numbers
 
-WEEKS = (1, 2, 3, 4)
 ROOT = Path(__file__).resolve().parents[2]
 MANIFEST = Path(__file__).with_name("shipped_blocks.py")
 SKELETONS = Path(__file__).with_name("skeletons")
@@ -85,12 +85,17 @@ def stub_text(week: int, solution_text: str, file: str, every_block: bool = Fals
 
 
 def generate(solutions: Path = ROOT / "solutions") -> Generated:
-    """All stubs of weeks 1..4 (paths relative to the repository root) and the manifest."""
+    """The stubs of every declared week (paths relative to the repository root) and the manifest.
+    A BlockError names a declared week whose solutions folder lacks one of its student files."""
     files: dict[str, str] = {}
     manifest: dict[int, dict[str, list[dict]]] = {}
-    for week in WEEKS:
+    for week in week_numbers():
         manifest[week] = {}
         folder = solutions / f"week{week}"
+        missing = [name for name in get_week(week).student_files if not (folder / name).is_file()]
+        if missing:
+            raise BlockError(f"solutions/week{week}", None, f"week {week} declares {', '.join(missing)} "
+                             f"(simiam/course/weeks/week{week}.py), which this folder does not have")
         for src in sorted(folder.glob("*.py")):
             solution = src.read_text(encoding="utf-8")
             try:
@@ -150,7 +155,7 @@ def _stale(generated: Generated, root: Path) -> list[str]:
     """Stub files in the generator's folders that it no longer writes."""
     return [
         str(path.relative_to(root))
-        for week in WEEKS
+        for week in week_numbers()
         for folder in STUB_FOLDERS
         for path in sorted((root / folder.format(week=week)).glob("*.py"))
         if str(path.relative_to(root)) not in generated.files

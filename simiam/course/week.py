@@ -121,8 +121,3 @@ class Week:
     def files_to_write(self) -> frozenset[str]:
         """The files with a block new this week (the others ship complete and may be missing)."""
         return frozenset(b.file for b in self.blocks)
-
-    @property
-    def default_settings(self) -> dict[str, Any]:
-        """`settings` as the dict LocalBrain takes (the old WeekConfig name, kept while callers move)."""
-        return self.settings.as_dict()

@@ -12,7 +12,7 @@ import pytest
 
 from simiam.control import Pose2D, RobotView
 from simiam.course.loader import load_submission
-from simiam.course.weeks import week_config
+from simiam.course.weeks import get_week
 
 ROOT = Path(__file__).resolve().parents[2]
 KINDS = {
@@ -33,9 +33,9 @@ def _as(kind, x: float):
 
 
 def _loaded(week: int):
-    sub = load_submission(ROOT / "solutions" / f"week{week}", week_config(week))
+    sub = load_submission(ROOT / "solutions" / f"week{week}", get_week(week))
     assert sub.ok, sub.errors
-    robot = RobotView(week_config(week).spec, sub)
+    robot = RobotView(get_week(week).spec, sub)
     return sub, robot
 
 

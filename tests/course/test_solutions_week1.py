@@ -8,12 +8,12 @@ import mistakes
 
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
-from simiam.course.weeks import week_config
+from simiam.course.weeks import get_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
 
 ROOT = Path(__file__).resolve().parents[2]
-WEEK = week_config(1)
+WEEK = get_week(1)
 
 
 def _folder(tmp_path: Path, mutant: str | None) -> Path:

@@ -15,13 +15,13 @@ import pytest
 from simiam.control import RobotView
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
-from simiam.course.weeks import week_config
+from simiam.course.weeks import get_week
 from simiam.robot.ir_sensor import distance_to_raw
 from simiam.simulator import Simulator
 from simiam.world import load_world
 
 ROOT = Path(__file__).resolve().parents[2]
-WEEK = week_config(2)
+WEEK = get_week(2)
 TABLE_D = [0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.10, 0.12, 0.14, 0.16, 0.18, 0.20, 0.25, 0.30]
 
 

@@ -18,12 +18,12 @@ import pytest
 from simiam.control import Inputs, Pose2D
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
-from simiam.course.weeks import week_config
+from simiam.course.weeks import get_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
 
 ROOT = Path(__file__).resolve().parents[2]
-WEEK = week_config(3)
+WEEK = get_week(3)
 GOALS = [(0.0, -1.0), (-1.0, 1.0)]  # the manual's example and the week's default goal
 
 

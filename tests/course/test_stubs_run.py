@@ -8,7 +8,7 @@ import pytest
 
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
-from simiam.course.weeks import week_config
+from simiam.course.weeks import get_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
 
@@ -20,7 +20,7 @@ EXPECTED = {1: "still", 2: "still", 3: "straight", 4: "straight"}
 
 def behaviour(folder: Path, week: int) -> str:
     """'still', 'straight', 'turns', 'moves' (not straight from the start) or 'crash: ...'."""
-    cfg = week_config(week)
+    cfg = get_week(week)
     sub = load_submission(folder, cfg)
     if sub.errors:
         return f"crash: {sub.errors[0]}"

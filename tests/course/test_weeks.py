@@ -49,9 +49,9 @@ def test_the_declared_values_of_weeks_1_to_4() -> None:
     assert [get_week(n).spec.brain_first for n in (1, 2, 3, 4)] == [True, False, False, False]
     assert [get_week(n).spec.ir_mode for n in (1, 2, 3, 4)] == ["week2", "week2", "week3", "week3"]
     assert get_week(4).spec.min_vel > 0 == get_week(3).spec.min_vel
-    assert get_week(2).default_settings == {"theta_d": math.pi / 4, "v": 0.1}
-    assert get_week(4).settings.as_dict() == {"v": 0.15, "goal": (-1.0, 1.0), "d_stop": 0.05,
-                                              "state": "avoid_obstacles"}
+    assert get_week(2).settings.as_dict() == {"theta_d": math.pi / 4, "v": 0.1}
+    assert get_week(3).settings.as_dict() == {"v": 0.2, "goal": (-1.0, 1.0), "d_stop": 0.05}
+    assert get_week(4).settings.as_dict() == {"v": 0.15, "state": "avoid_obstacles"}
 
 
 def test_settings_keep_named_and_open_ones_apart() -> None:

@@ -21,7 +21,7 @@ import pytest
 
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
-from simiam.course.weeks import week_config
+from simiam.course.weeks import get_week
 from simiam.robot.quickbot import spec_for_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
@@ -58,7 +58,7 @@ def replay(folder: Path, name: str, goal_id: str) -> list[str]:
     sub = load_submission(folder, week)
     assert sub.ok, sub.errors
     settings = {"v": 0.2, "d_stop": 0.05, "goal": goal, "state": "go_to_goal", "gains": {"go_to_goal": gains}}
-    brain = LocalBrain(sub, week_config(week), settings)
+    brain = LocalBrain(sub, get_week(week), settings)
     sim = Simulator(load_world("week3"), brain, spec_for_week(week), dt=dt, start=(0.0, 0.0, 0.0))
     problems = []
     for row in rows[1:]:
@@ -117,7 +117,7 @@ def disagreement(folder: Path, name: str, goal: tuple[float, float]) -> str | No
     assert sub.ok, sub.errors
     settings = {"v": 0.2, "d_stop": 0.05, "goal": goal, "state": "go_to_goal", "gains": {"go_to_goal": gains}}
     spec = spec_for_week(week)
-    ours = Simulator(load_world("week3"), LocalBrain(sub, week_config(week), settings), spec, dt=dt)
+    ours = Simulator(load_world("week3"), LocalBrain(sub, get_week(week), settings), spec, dt=dt)
     reference = GoToGoalBrain(spec, goal, v=0.2, d_stop=0.05, **options)
     ref = Simulator(load_world("week3"), reference, spec, dt=dt)
     for _ in range(int(round(10.0 / dt))):
@@ -155,7 +155,7 @@ def stop_time_and_distance(folder: Path, name: str, goal: tuple[float, float]) -
     sub = load_submission(folder, week)
     assert sub.ok, sub.errors
     settings = {"v": 0.2, "d_stop": 0.05, "goal": goal, "state": "go_to_goal", "gains": {"go_to_goal": gains}}
-    sim = Simulator(load_world("week3"), LocalBrain(sub, week_config(week), settings), spec_for_week(week),
+    sim = Simulator(load_world("week3"), LocalBrain(sub, get_week(week), settings), spec_for_week(week),
                     dt=dt)
     trace = sim.run(10.0, until=lambda rec: rec.command["state"] == "stop")
     x, y, _ = sim.pose

@@ -11,7 +11,7 @@ import pytest
 from simiam.control import RobotView
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
-from simiam.course.weeks import week_config
+from simiam.course.weeks import get_week
 from simiam.robot.quickbot import spec_for_week
 from simiam.simulator import Simulator, validate_command
 from simiam.world import load_world
@@ -23,7 +23,7 @@ READINGS = {"t": 0.033, "dt": 0.033, "ticks": [0, 0], "ir_raw": [133, 133, 133, 
 def _brain(week: int, settings: dict | None = None) -> LocalBrain:
     sub = load_submission(ROOT / f"solutions/week{week}", week)
     assert sub.ok, sub.errors
-    return LocalBrain(sub, week_config(week), settings)
+    return LocalBrain(sub, get_week(week), settings)
 
 
 def test_command_has_the_seam_shape_and_plain_floats():
@@ -60,7 +60,7 @@ def test_top_level_gains_are_accepted_and_unknown_controllers_refused():
 def test_at_goal_uses_the_estimate_not_the_true_pose():
     """Start the estimate at the goal: the week-3 supervisor stops at once, whatever the true pose."""
     sub = load_submission(ROOT / "solutions/week3", 3)
-    brain = LocalBrain(sub, week_config(3), {"goal": (0.5, 0.5)}, start=(0.5, 0.5, 0.0))
+    brain = LocalBrain(sub, get_week(3), {"goal": (0.5, 0.5)}, start=(0.5, 0.5, 0.0))
     assert brain.step(READINGS)["state"] == "stop"
     assert _brain(3, {"goal": (0.5, 0.5)}).step(READINGS)["state"] == "go_to_goal"
 
@@ -98,7 +98,7 @@ def true_pose_leaks(make_view) -> list:
     """Drive the week-4 solution for 3 s; what of the true state the robot handed to student code reaches:
     the Simulator itself, or the true x / y as a number."""
     sub = load_submission(ROOT / "solutions/week4", 4)
-    brain = LocalBrain(sub, week_config(4))
+    brain = LocalBrain(sub, get_week(4))
     sim = Simulator(load_world("week4"), brain, spec_for_week(4), dt=0.05)
     brain.robot = brain.supervisor.robot = make_view(sub, sim)
     sim.run(3.0)

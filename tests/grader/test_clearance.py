@@ -11,11 +11,11 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from grader import clearance
 from grader.scenarios import min_clearance
-from simiam.course.weeks import week_config
+from simiam.course.weeks import get_week
 from simiam.trace import Trace
 from simiam.world import load_world
 
-SPEC = week_config(4).spec
+SPEC = get_week(4).spec
 PLATE = SPEC.base_plate
 
 

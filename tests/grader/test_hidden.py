@@ -6,11 +6,11 @@ from pathlib import Path
 
 import pytest
 
-from grader.checks.week4 import HIDDEN_SECONDS, V, _variant
+from grader.checks.week4 import HIDDEN_SECONDS, _variant
 from grader.hidden import load_hidden
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
-from simiam.course.weeks import week_config
+from simiam.course.weeks import get_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
 
@@ -24,12 +24,12 @@ def test_hidden_set_is_present_and_big_enough() -> None:
 
 @pytest.mark.slow
 def test_reference_solution_survives_every_hidden_variant() -> None:
-    config = week_config(4)
+    config = get_week(4)
     solution = load_submission(ROOT / "solutions" / "week4", 4)
     crashed = []
     for v in load_hidden(4)["variants"]:
         world = _variant(load_world("week4"), v["turn"], v["of"], v["mirror"])
-        brain = LocalBrain(solution, config, {"v": V, "state": "avoid_obstacles"})
+        brain = LocalBrain(solution, config, config.settings.as_dict())
         trace = Simulator(world, brain, config.spec, dt=config.dt).run(HIDDEN_SECONDS)
         if trace.collision is not None:
             crashed.append((world.name, trace.collision["t"]))

@@ -13,7 +13,7 @@ from grader.sandbox.limits import Limits
 from grader.sandbox.session import RemoteBrain, StudentSession
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
-from simiam.course.weeks import week_config
+from simiam.course.weeks import get_week
 from simiam.robot.quickbot import spec_for_week
 from simiam.simulator import BrainError, Simulator
 from simiam.world import load_world
@@ -23,13 +23,13 @@ SETTINGS = {"goal": [0.5, 0.5], "v": 0.15}
 
 
 def _run(brain, week: int = 3, seconds: float = 2.0) -> dict:
-    cfg = week_config(week)
+    cfg = get_week(week)
     sim = Simulator(load_world(cfg.world), brain, spec_for_week(week), dt=cfg.dt, start=cfg.start)
     return sim.run(seconds=seconds).to_json()["steps"]
 
 
 def test_remote_and_local_brains_give_the_same_trace(shared_dir, one_mode):
-    local = _run(LocalBrain(load_submission(REPO / "solutions" / "week3", 3), week_config(3), SETTINGS))
+    local = _run(LocalBrain(load_submission(REPO / "solutions" / "week3", 3), get_week(3), SETTINGS))
     with StudentSession(3, REPO / "solutions" / "week3", sandbox=one_mode) as session:
         remote = _run(RemoteBrain(session, SETTINGS))
     assert remote == local  # bit for bit: floats cross the JSON channel exactly

@@ -25,11 +25,11 @@ def solution_trace(week: int, seconds: float) -> dict:
     """The reference solution driving the week's scenario (the supervisor's debug values included)."""
     from simiam.control.local_brain import LocalBrain
     from simiam.course.loader import load_submission
-    from simiam.course.weeks import week_config
+    from simiam.course.weeks import get_week
     from simiam.simulator import Simulator
     from simiam.world import load_world
 
-    cfg = week_config(week)
+    cfg = get_week(week)
     sub = load_submission(ROOT / "solutions" / f"week{week}", cfg)
     sim = Simulator(load_world(cfg.world), LocalBrain(sub, cfg), spec=cfg.spec, dt=0.033, start=cfg.start)
     return sim.run(seconds=seconds).to_json()

@@ -68,9 +68,4 @@ def all_blocks() -> tuple[Placeholder, ...]:
     return tuple(block for week in all_weeks() for block in week.blocks)
 
 
-# The names before weeks were declared objects; kept only while callers move to get_week / Week.
-WeekConfig = Week
-week_config = get_week
-
-__all__ = ["Week", "WeekConfig", "all_blocks", "all_weeks", "get_week", "refresh", "week_config",
-           "week_numbers"]
+__all__ = ["Week", "all_blocks", "all_weeks", "get_week", "refresh", "week_numbers"]

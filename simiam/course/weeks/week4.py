@@ -72,7 +72,8 @@ WEEK = Week(
     },
     checks="grader.checks.week4",
     blocks=BLOCKS,
-    settings=SupervisorSettings(v=0.15, goal=(-1.0, 1.0), d_stop=0.05, state="avoid_obstacles"),
+    # v: the original's 0.9 is capped by ensure_w and crashes its own AvoidObstacles
+    settings=SupervisorSettings(v=0.15, state="avoid_obstacles"),
     seconds=60.0,
     debug_signals=("v", "w", "theta_g", "u_ao", "ir_points_wf"),
     summary=("goal",),
