@@ -31,10 +31,11 @@ class CheckResult:
     status: str = "failed"
     message: str = ""
     details: dict[str, Any] = field(default_factory=dict)
+    plots: tuple[str, ...] = ()  # what the report draws for each run of a scenario check (Check.plots)
 
     def to_json(self) -> dict[str, Any]:
-        """The contract's per-check record (plus `visibility`)."""
-        return {
+        """The contract's per-check record (plus `visibility`, and `plots` for a scenario check)."""
+        record: dict[str, Any] = {
             "id": self.id,
             "name": self.name,
             "kind": self.kind,
@@ -45,6 +46,9 @@ class CheckResult:
             "message": self.message,
             "details": self.details,
         }
+        if self.plots:
+            record["plots"] = list(self.plots)
+        return record
 
 
 def package_version() -> str:

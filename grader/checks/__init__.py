@@ -75,7 +75,8 @@ PLOTS = ("trajectory", "heading", "angle")
 @dataclass(frozen=True)
 class Check:
     """One check of one week. `needs`: the student files it runs (a file that did not load fails it).
-    `plots`: what the report draws for each of its scenario runs (names from PLOTS)."""
+    `plots`: what the report draws for each run of a scenario check (names from PLOTS); the result
+    carries it to the report, which imports no check."""
 
     id: str
     name: str
@@ -139,7 +140,8 @@ def grader_error(exc: BaseException, whole: bool = False) -> tuple[str, dict[str
 def run_check(check: Check, ctx: Context, load_errors: dict[str, list[str]]) -> CheckResult:
     """Run one check and turn whatever happens into a CheckResult (never raises for student problems)."""
     result = CheckResult(
-        id=check.id, name=check.name, kind=check.kind, visibility=check.visibility, max_points=check.weight
+        id=check.id, name=check.name, kind=check.kind, visibility=check.visibility, max_points=check.weight,
+        plots=check.plots if check.kind == "scenario" else (),
     )
     broken = [msg for file in check.needs for msg in load_errors.get(file, [])]
     if broken:

@@ -23,6 +23,7 @@ IR = ("quickbot.py",)
 # The reference solution and its correct variants end within 0.0054 rad of theta_d after 8 s (every
 # visible angle and 45 hidden ones); a uni_to_diff that turns at half the asked w ends 0.03 rad away.
 ANGLE_TOLERANCE = 0.02
+ANGLE_PLOTS = ("trajectory", "angle")  # the report: the path, and theta against theta_d
 ANGLE_HINT = (
     "Hint: the robot turns with the w GoToAngle asks from your odometry's theta: check that uni_to_diff "
     "really turns at w (its own checks) and that update_odometry's theta follows the wheels"
@@ -253,6 +254,7 @@ CHECKS = [
         1.5,
         go_to_angle_check(hidden=False),
         ("differential_drive.py", "quickbot.py", "go_to_angle.py", "qb_supervisor.py"),
+        plots=ANGLE_PLOTS,
     ),
     Check(
         "week2.go_to_angle.other_angles",
@@ -262,5 +264,6 @@ CHECKS = [
         go_to_angle_check(hidden=True),
         ("differential_drive.py", "quickbot.py", "go_to_angle.py", "qb_supervisor.py"),
         visibility="hidden",
+        plots=ANGLE_PLOTS,
     ),
 ]

@@ -22,6 +22,7 @@ SUPERVISOR = ("qb_supervisor.py",)
 ALL = ("differential_drive.py", "quickbot.py", "go_to_angle.py", "go_to_goal.py", "qb_supervisor.py")
 # The week's v, goal and d_stop (the course's arrival radius, judged on the TRUE position) and run length
 # come from its declaration (simiam/course/weeks/week3.py, ctx.config).
+GOAL_PLOTS = ("trajectory", "heading")  # the report: the path, and theta against theta_g with its band
 ROBOT_D_STOP = 0.02  # the supervisor stops a little inside d_stop, so odometry drift cannot stop it outside
 SETTLE_LIMIT = 3.0
 OVERSHOOT_LIMIT = 0.10
@@ -252,9 +253,12 @@ CHECKS = [
         2.0,
         reach_goals(hidden=False),
         ALL,
+        plots=GOAL_PLOTS,
     ),
-    Check("week3.pid.settle_time", "settle time <= 3 s (goal (0, -1))", "scenario", 1.0, settle_time, ALL),
-    Check("week3.pid.overshoot", "overshoot <= 10 % (goal (0, -1))", "scenario", 1.0, overshoot, ALL),
+    Check("week3.pid.settle_time", "settle time <= 3 s (goal (0, -1))", "scenario", 1.0, settle_time, ALL,
+          plots=GOAL_PLOTS),
+    Check("week3.pid.overshoot", "overshoot <= 10 % (goal (0, -1))", "scenario", 1.0, overshoot, ALL,
+          plots=GOAL_PLOTS),
     Check(
         "week3.go_to_goal.other_goals",
         "reach goals drawn per seed",
@@ -263,6 +267,7 @@ CHECKS = [
         reach_goals(hidden=True),
         ALL,
         visibility="hidden",
+        plots=GOAL_PLOTS,
     ),
     Check(
         "week3.pid.tracking_other_goal",
@@ -272,5 +277,6 @@ CHECKS = [
         tracking_other_goal,
         ALL,
         visibility="hidden",
+        plots=GOAL_PLOTS,
     ),
 ]

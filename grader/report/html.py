@@ -161,6 +161,15 @@ def run_anchor(trace_key: str) -> str:
     return "run-" + _slug(trace_key)
 
 
+def _plots(check: dict, goal: object, has_theta_d: bool) -> set[str]:
+    """What to draw for each run of `check`: what the check declared (Check.plots, carried in the
+    result); for a result written before checks declared them, what the run's data supports."""
+    declared = check.get("plots")
+    if isinstance(declared, list):
+        return {p for p in declared if isinstance(p, str)}
+    return {"trajectory", *(["heading"] if goal else ["angle"] if has_theta_d else [])}
+
+
 def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
                hrefs: dict[str, str], shown: set[str], max_rows: int = REPLAY_ROWS) -> list[dict]:
     """The runs of one check; `shown` holds the trace keys an earlier check already shows (their replay
@@ -189,13 +198,17 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
             view["never_started"] = True  # one line instead of an empty plot (the reason is in the message)
             views.append(view)
             continue
-        view["trajectory"] = svg.trajectory_svg(trace)
         goal = trace.get("goal") or metrics.get("goal")
-        if goal or trace.get("week") == 3:
+        theta_d = metrics.get("theta_d")
+        has_theta_d = isinstance(theta_d, (int, float)) and math.isfinite(theta_d)
+        plots = _plots(check, goal, has_theta_d)
+        if "trajectory" in plots:
+            view["trajectory"] = svg.trajectory_svg(trace)
+        if "heading" in plots:
             view["heading"] = svg.heading_svg(trace, goal=goal, settle_time=metrics.get("settle_time"))
             view["heading_caption"] = "θ should enter the band and stay there"
-        elif isinstance(metrics.get("theta_d"), (int, float)) and math.isfinite(metrics["theta_d"]):
-            view["heading"] = svg.angle_svg(trace, metrics["theta_d"])
+        elif "angle" in plots and has_theta_d:
+            view["heading"] = svg.angle_svg(trace, theta_d)
             view["heading_caption"] = "θ should reach θ_d and stay there"
         if shared:
             view["shared"] = run_anchor(key)

@@ -135,3 +135,48 @@ def test_a_week_file_must_match_its_name_and_declare_WEEK(extra_weeks: Path) -> 
 def test_a_week_is_immutable() -> None:
     with pytest.raises(dataclasses.FrozenInstanceError):
         get_week(3).seconds = 1.0  # type: ignore[misc]
+
+
+def test_a_declared_week_reaches_the_command_lines(extra_weeks: Path, tmp_path: Path, capsys) -> None:
+    """A week declared as one file (week 9: week 4's robot and files, nothing new to write, a 1.5 s run)
+    is a week of every front door, with no other edit: grade, the platform commands, batch, simiam run,
+    the stub generator and migrate."""
+    import argparse
+    import json
+    import shutil
+
+    from grader.batch.runner import parse_week
+    from grader.cli import _week as grade_week
+    from grader.platforms.cli import _week as platform_week
+    from simiam.course import migrate, stubs
+    from simiam.run import main as simiam_run
+
+    (extra_weeks / "week9.py").write_text(WEEK9.format(number=9))
+    weeks.refresh()
+    assert grade_week("week9") == platform_week("9") == parse_week("week9") == 9
+    with pytest.raises(ValueError, match="week9"):
+        grade_week("week10")
+
+    root = Path(__file__).resolve().parents[2]
+    solutions = tmp_path / "solutions"
+    for n in (1, 2, 3, 4):
+        shutil.copytree(root / "solutions" / f"week{n}", solutions / f"week{n}")
+    with pytest.raises(Exception, match=r"solutions/week9: week 9 declares differential_drive.py"):
+        stubs.generate(solutions)
+    shutil.copytree(root / "solutions" / "week4", solutions / "week9")
+    generated = stubs.generate(solutions)
+    assert "assignments/week9/avoid_obstacles.py" in generated.files
+    assert "    9: {" in generated.files["simiam/course/shipped_blocks.py"]
+
+    out = tmp_path / "run"
+    args = argparse.Namespace(week="week9", path=str(solutions / "week9"), solutions=False, seconds=None,
+                              dt=None, out=str(out), world=None)
+    assert simiam_run(args) == 0
+    trace = json.loads((out / "week9.json").read_text())
+    assert trace["week"] == 9 and trace["seconds"] == pytest.approx(1.5, abs=0.04)
+
+    capsys.readouterr()
+    moved = argparse.Namespace(week="week9", source=str(solutions / "week4"), target=str(solutions / "week9"),
+                               dry_run=True)
+    assert migrate.main(moved) == migrate.EXIT_USAGE  # this checkout's shipped_blocks.py predates week 9
+    assert "has no week9 yet (instructors: python -m simiam.course.stubs)" in capsys.readouterr().err

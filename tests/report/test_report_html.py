@@ -277,3 +277,36 @@ def test_the_collision_label_stays_on_the_map(synthetic, where):
     x, y, width = float(label.get("x")), float(label.get("y")), 6.5 * len(label.text)  # font 11, bold
     left = x - width if label.get("text-anchor") == "end" else x
     assert 0 <= left and left + width <= size and 11 <= y <= size
+
+
+@pytest.mark.parametrize("declared,classes", [
+    (["trajectory"], ["trajectory", "trajectory"]),
+    (["trajectory", "heading"], ["trajectory", "heading", "trajectory", "heading"]),
+    (["heading"], ["heading", "heading"]),
+    ([], []),
+])
+def test_the_report_draws_what_the_check_declared(week3_result, declared, classes):
+    """The runs of a goal check get the plots its declaration names (Check.plots, in the result), not
+    what the week number or the run's data would suggest."""
+    result, traces = week3_result
+    result["checks"][2]["plots"] = declared
+    html = render_report(result, traces, replays="none")
+    section = html.split('id="check-week3.go_to_goal.reaches_goals"', 1)[1].split("</article>", 1)[0]
+    drawn = ["trajectory" if "trajectory" in (el.get("class") or "") else "heading"
+             for el in svg_elements(section)]
+    assert drawn == classes
+
+
+def test_a_scenario_result_carries_its_checks_plots() -> None:
+    from grader.checks import Check, Context, Outcome, checks_for_week, run_check
+
+    goal = {c.id: c.plots for c in checks_for_week(3) if c.kind == "scenario"}
+    assert set(goal.values()) == {("trajectory", "heading")}
+    assert {c.plots for c in checks_for_week(2) if c.kind == "scenario"} == {("trajectory", "angle")}
+    ctx = Context(week=3, seed=1, session=None)
+    scenario = Check("week3.x.y", "x", "scenario", 1.0, lambda ctx: Outcome(1.0), plots=("heading",))
+    prop = Check("week3.x.z", "x", "property", 1.0, lambda ctx: Outcome(1.0), plots=("heading",))
+    assert run_check(scenario, ctx, {}).to_json()["plots"] == ["heading"]
+    assert "plots" not in run_check(prop, ctx, {}).to_json()
+    with pytest.raises(ValueError, match="unknown plots"):
+        Check("week3.x.w", "x", "scenario", 1.0, lambda ctx: Outcome(1.0), plots=("radar",))
