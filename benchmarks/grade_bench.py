@@ -24,6 +24,7 @@ from grading_baseline import Baseline, measure_baseline
 
 from grader.grading import grade_submission
 from grader.sandbox.errors import SandboxUnavailable
+from simiam.course.weeks import week_numbers
 from simiam.machine import Stopwatch, Usage, load_after_line, machine_line, median_usage, ratio
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -52,8 +53,8 @@ def _figure(label: str, usages: list[Usage], base: Baseline, extra: str = "") ->
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--repeat", type=int, default=3, help="runs per figure (the median is printed)")
-    p.add_argument("--weeks", type=int, nargs="+", default=[1, 2, 3, 4], choices=[1, 2, 3, 4])
-    p.add_argument("--cli-week", type=int, default=3, choices=[1, 2, 3, 4],
+    p.add_argument("--weeks", type=int, nargs="+", default=list(week_numbers()), choices=week_numbers())
+    p.add_argument("--cli-week", type=int, default=3, choices=week_numbers(),
                    help="the week graded as a fresh `grade` process")
     p.add_argument("--no-hidden", action="store_true", help="skip the --hidden figures")
     p.add_argument("--sandbox", default="auto", choices=["auto", "bwrap", "subprocess"])

@@ -35,6 +35,7 @@ began_imports = time.perf_counter(), time.process_time()
 import grader.cli  # noqa: E402, F401  (the imports a fresh `grade` pays before grading)
 import grader.grading as grading  # noqa: E402
 from grader.sandbox.session import RemoteBrain, StudentSession  # noqa: E402
+from simiam.course.weeks import week_numbers  # noqa: E402
 from simiam.machine import Stopwatch, descendants_cpu, load_after_line, machine_line  # noqa: E402
 
 IMPORT_WALL = time.perf_counter() - began_imports[0]
@@ -256,7 +257,7 @@ def hypothesis_per_case(examples: int = 25, runs: int = 5) -> tuple[float, float
 
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--week", type=int, default=3, choices=[1, 2, 3, 4])
+    p.add_argument("--week", type=int, default=3, choices=week_numbers())
     p.add_argument("--sandbox", default="auto", choices=["auto", "bwrap", "subprocess"])
     args = p.parse_args(argv)
     from grader.sandbox.bench import sandbox_description

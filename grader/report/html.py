@@ -199,15 +199,15 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
             views.append(view)
             continue
         goal = trace.get("goal") or metrics.get("goal")
-        theta_d = metrics.get("theta_d")
-        has_theta_d = isinstance(theta_d, (int, float)) and math.isfinite(theta_d)
-        plots = _plots(check, goal, has_theta_d)
+        given = metrics.get("theta_d")
+        theta_d = float(given) if isinstance(given, (int, float)) and math.isfinite(given) else None
+        plots = _plots(check, goal, theta_d is not None)
         if "trajectory" in plots:
             view["trajectory"] = svg.trajectory_svg(trace)
         if "heading" in plots:
             view["heading"] = svg.heading_svg(trace, goal=goal, settle_time=metrics.get("settle_time"))
             view["heading_caption"] = "θ should enter the band and stay there"
-        elif "angle" in plots and has_theta_d:
+        elif "angle" in plots and theta_d is not None:
             view["heading"] = svg.angle_svg(trace, theta_d)
             view["heading_caption"] = "θ should reach θ_d and stay there"
         if shared:

@@ -10,6 +10,7 @@ import mistakes
 import pytest
 
 from simiam.course.loader import LoadError, load_submission
+from simiam.course.weeks import week_numbers
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -28,7 +29,7 @@ def _copy(tmp_path: Path, week: int, fixture: str | None = None) -> Path:
     return folder
 
 
-@pytest.mark.parametrize("week", [1, 2, 3, 4])
+@pytest.mark.parametrize("week", week_numbers())
 def test_solutions_load_cleanly(week):
     sub = load_submission(ROOT / f"solutions/week{week}", week)
     assert sub.errors == []
