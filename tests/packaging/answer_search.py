@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from simiam.course.blocks import find_blocks
-from simiam.course.placeholders import PLACEHOLDERS
+from simiam.course.weeks import all_blocks
 
 DISTINCT = 8
 SMALL = 5
@@ -167,7 +167,7 @@ class Answers:
 
 def _provided(repo: Path) -> tuple[set[str], set[str]]:
     """Lines and shapes every student receives anyway: the placeholders, and the stubs outside the blocks."""
-    lines = {norm_line(ln) for p in PLACEHOLDERS for ln in p.code.splitlines()}
+    lines = {norm_line(ln) for p in all_blocks() for ln in p.code.splitlines()}
     shapes: set[str] = set()
     for stub in sorted(repo.glob("assignments/week*/*.py")):
         text = stub.read_text()
@@ -178,7 +178,7 @@ def _provided(repo: Path) -> tuple[set[str], set[str]]:
         for b in find_blocks(text, stub.name):
             blanked[b.start_line:b.end_line - 1] = [f"{b.indent}pass"] * (b.end_line - 1 - b.start_line)
         shapes.update(_all_expressions(ast.parse("\n".join(blanked)), 1))
-        shapes.update(s for p in PLACEHOLDERS for s in _all_expressions(ast.parse(p.code), 1))
+        shapes.update(s for p in all_blocks() for s in _all_expressions(ast.parse(p.code), 1))
     return lines, shapes
 
 

@@ -20,7 +20,7 @@ from typing import Any
 from simiam.control.controller import Inputs
 from simiam.control.pose import Pose2D
 from simiam.control.robot_view import RobotView
-from simiam.course.weeks import week_config
+from simiam.course.weeks import get_week
 
 __all__ = [
     "avoid_obstacles",
@@ -57,7 +57,7 @@ def plain(value: Any, depth: int = 0) -> Any:
 
 
 def _robot(sub, week: int) -> RobotView:
-    return RobotView(week_config(week).spec, sub)
+    return RobotView(get_week(week).spec, sub)
 
 
 def _supervisor(sub, week: int, start=(0.0, 0.0, 0.0)):
