@@ -244,7 +244,7 @@ def summary(week: Week, folder: Path, trace: Trace, sup: Supervisor) -> str:
         parts.append(f"COLLISION at t = {c['t']:.3f} s at ({c['pose'][0]:.3f}, {c['pose'][1]:.3f}).")
     else:
         parts.append("No collision.")
-    if trace.goal is not None:
+    if trace.goal is not None and "goal" in week.summary:
         d = math.hypot(x - trace.goal[0], y - trace.goal[1])
         stopped = [t for t, st in zip(s["t"], s["state"], strict=True) if st == "stop"]
         when = f"stopped at t = {stopped[0]:.2f} s" if stopped else "never stopped"

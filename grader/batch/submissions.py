@@ -16,10 +16,11 @@ from pathlib import Path
 
 from grader.batch.names import MAX_DEPTH, check_path, check_paths, check_student_id, shown
 from grader.batch.zips import JUNK_PARTS, Limits, SubmissionRefused, is_junk, read_zip
+from simiam.course.weeks import all_weeks
 
-# The files students edit (contract.md); used only to find the submission's root folder inside a zip.
-STUDENT_FILES = frozenset({"differential_drive.py", "quickbot.py", "qb_supervisor.py", "go_to_angle.py",
-                           "go_to_goal.py", "avoid_obstacles.py"})
+# The files students edit in any week (each week declares its own, simiam/course/weeks/weekN.py); used
+# only to find the submission's root folder inside a zip.
+STUDENT_FILES = frozenset(name for week in all_weeks() for name in week.student_files)
 
 
 @dataclass(frozen=True)

@@ -148,6 +148,14 @@ def _go(ctx: Context, check_id: str, goal: tuple[float, float]) -> scenarios.Run
     return ctx.memo[key]
 
 
+def _declared_goal(ctx: Context) -> tuple[float, float]:
+    """The week's own goal (simiam/course/weeks/week3.py), the first goal of the visible runs."""
+    goal = ctx.config.settings.goal
+    if goal is None:
+        raise ValueError(f"{ctx.config.name} declares no goal for its go-to-goal runs")
+    return float(goal[0]), float(goal[1])
+
+
 def reach_goals(hidden: bool):
     check_id = "week3.go_to_goal." + ("other_goals" if hidden else "reach_goals")
 
@@ -155,7 +163,7 @@ def reach_goals(hidden: bool):
         goals = (
             seeded_goals(ctx.seed, 3, "hidden")
             if hidden
-            else [(-1.0, 1.0), (0.0, -1.0), *seeded_goals(ctx.seed, 1, "visible")]
+            else [_declared_goal(ctx), (0.0, -1.0), *seeded_goals(ctx.seed, 1, "visible")]
         )
         reached, lines, runs, done = 0, [], [], []
         for goal in goals:

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from grader.batch.submissions import STUDENT_FILES, find_root, pack, read_folder, unpack
 from grader.batch.zips import SubmissionRefused, read_zip
+from simiam.course.weeks import get_week
 
 __all__ = ["SubmissionRefused", "collect"]
 
@@ -33,8 +34,8 @@ def collect(upload: Path, week: int, into: Path) -> Path:
     wanted = {p: d for p, d in files.items() if "/" not in p}
     if not any(p in STUDENT_FILES for p in wanted):
         names = ", ".join(sorted(files)[:8]) or "nothing"
-        raise SubmissionRefused(
-            f"none of the week-{week} files ({', '.join(sorted(STUDENT_FILES))}) is in the upload; it holds "
-            f"{names}")
+        expected = ", ".join(get_week(week).student_files)
+        raise SubmissionRefused(f"none of the week-{week} files ({expected}) is in the upload; "
+                                f"it holds {names}")
     into.mkdir(parents=True, exist_ok=True)
     return unpack(pack(wanted), into)

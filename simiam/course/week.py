@@ -19,6 +19,9 @@ from simiam.robot.quickbot import RobotSpec
 
 # The settings a supervisor understands by name (Supervisor attributes); others go in `extra`.
 NAMED_SETTINGS = ("v", "goal", "d_stop", "theta_d", "state")
+# The lines `simiam run` can print after a run (simiam/run.py `summary`): the distance driven, the heading
+# error to theta_d, the goal reached or not (a run without a goal prints the distance instead).
+SUMMARY_LINES = ("path", "heading", "goal")
 
 
 @dataclass(frozen=True)
@@ -98,6 +101,12 @@ class Week:
             raise ValueError(f"{where}: its RobotSpec says week {self.spec.week}")
         if not re.fullmatch(r"[A-Za-z_][\w.]*", self.checks):
             raise ValueError(f"{where}: checks must be a module name like 'grader.checks.week{self.number}'")
+        odd = [name for name in self.debug_signals if not name.isidentifier()]
+        if odd or len(set(self.debug_signals)) != len(self.debug_signals):
+            raise ValueError(f"{where}: debug signals must be distinct identifiers: {self.debug_signals}")
+        lines = sorted(set(self.summary) - set(SUMMARY_LINES))
+        if lines:
+            raise ValueError(f"{where}: unknown summary lines {lines} (known: {', '.join(SUMMARY_LINES)})")
         unknown = sorted(set(self.required_names) - set(self.student_files))
         if unknown:
             raise ValueError(f"{where}: required_names of files that are not student files: {unknown}")

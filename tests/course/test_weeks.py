@@ -80,6 +80,9 @@ def _week(**changes) -> Week:
     ({"blocks": (Placeholder("b.py", "f", hint="h", code="x = 0"),)}, "not a student file"),
     ({"blocks": (Placeholder("a.py", "f", hint="h", code="x = 0", week=3),)}, "says week 3"),
     ({"blocks": (Placeholder("a.py", "f", hint="h", code=""),) * 2}, "declared twice"),
+    ({"summary": ("path", "laps")}, "unknown summary lines"),
+    ({"debug_signals": ("u_ao", "u ao")}, "be distinct identifiers"),
+    ({"debug_signals": ("v", "v")}, "be distinct identifiers"),
 ])
 def test_an_inconsistent_week_is_refused(changes, match) -> None:
     assert _week().blocks[0].week == 9
