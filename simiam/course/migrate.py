@@ -26,7 +26,7 @@ from simiam.course.folders import WeekFolderNotFound, default_week_folder, week_
 from simiam.course.placeholders import placeholder_for
 from simiam.course.shipped_blocks import SHIPPED
 from simiam.course.splice import check_body, read_submission_file
-from simiam.course.weeks import get_week, week_numbers
+from simiam.course.weeks import get_week, previous_week, week_numbers
 
 EXIT_OK, EXIT_REFUSED, EXIT_USAGE = 0, 1, 2
 
@@ -59,6 +59,11 @@ class Migration:
     errors: list[BlockError] = field(default_factory=list)
     texts: dict[str, str] = field(default_factory=dict)  # new text of each target file that changes
     written: list[str] = field(default_factory=list)
+
+    @property
+    def last(self) -> int:
+        """Last week: the declared week before this one (they need not be numbered without gaps)."""
+        return previous_week(self.week)
 
     @property
     def refused(self) -> bool:
@@ -144,7 +149,7 @@ def _check_layout(
 def plan(week: int, source: Path, target: Path) -> Migration:
     """Work out every block's fate without writing anything."""
     mig = Migration(week, source, target)
-    last, this = SHIPPED.get(week - 1, {}), SHIPPED[week]
+    last, this = SHIPPED.get(mig.last, {}), SHIPPED[week]
     sources: dict[str, dict[tuple[str, int], Block] | None] = {}
     for name, rows in this.items():
         label = str(target / name)
@@ -175,9 +180,9 @@ def _source_blocks(mig: Migration, name: str, cache: dict) -> dict[tuple[str, in
     if name not in cache:
         label = str(mig.source / name)
         found = _blocks(mig.source, name, label, mig.errors)
-        expected = SHIPPED[mig.week - 1][name]
+        expected = SHIPPED[mig.last][name]
         ok = found is not None and _check_layout(
-            found[1], expected, found[0], label, mig.week - 1, mig.errors
+            found[1], expected, found[0], label, mig.last, mig.errors
         )
         cache[name] = {b.key: b for b in found[1]} if ok and found else None
     return cache[name]
@@ -198,9 +203,9 @@ def _carry(mig: Migration, name: str, text: str, blocks: list[Block], t: Block, 
     if week in spec.revised_in:
         keep(f"shipped version kept: {spec.revised_why}")
         return None
-    last_shipped = {(r[0], r[1]): r[4] for r in SHIPPED[week - 1].get(name, [])}
+    last_shipped = {(r[0], r[1]): r[4] for r in SHIPPED[mig.last].get(name, [])}
     if t.key not in last_shipped:
-        keep(f"not in week {week - 1}")
+        keep(f"not in week {mig.last}")
         return None
     src = _source_blocks(mig, name, cache)
     if src is None:
@@ -213,10 +218,10 @@ def _carry(mig: Migration, name: str, text: str, blocks: list[Block], t: Block, 
     theirs, here = fingerprint(s.body), fingerprint(t.body)
     shipped_here = {(r[0], r[1]): r[4] for r in SHIPPED[week][name]}[t.key]
     if theirs == fingerprint(spec.body("")):
-        keep(f"you had not filled it in week {week - 1} (still the placeholder); shipped version kept")
+        keep(f"you had not filled it in week {mig.last} (still the placeholder); shipped version kept")
         return None
     if theirs == last_shipped[t.key]:
-        keep(f"same as the course shipped in week {week - 1}; this week's version kept")
+        keep(f"same as the course shipped in week {mig.last}; this week's version kept")
         return None
     if theirs == here:
         if here == shipped_here:
@@ -300,12 +305,12 @@ def main(args: argparse.Namespace) -> int:
     if week is None or week == week_numbers()[0]:
         print(f"simiam migrate: no week {args.week!r} to migrate into ({later})", file=sys.stderr)
         return EXIT_USAGE
-    if week not in SHIPPED or week - 1 not in SHIPPED:
+    if week not in SHIPPED or previous_week(week) not in SHIPPED:
         print(f"simiam migrate: the course's list of shipped blocks has no week{week} yet "
               "(instructors: python -m simiam.course.stubs)", file=sys.stderr)
         return EXIT_USAGE
     try:
-        source = _source_folder(args.source, week - 1)
+        source = _source_folder(args.source, previous_week(week))
         target = week_folder(week, args.target)
     except WeekFolderNotFound as exc:
         print(f"simiam migrate: {exc} (--to PATH)", file=sys.stderr)

@@ -13,7 +13,7 @@ import pytest
 import simiam.course.weeks as weeks
 from simiam.course.placeholders import Placeholder
 from simiam.course.week import SupervisorSettings, Week
-from simiam.course.weeks import all_blocks, all_weeks, get_week, week_numbers
+from simiam.course.weeks import all_blocks, all_weeks, get_week, previous_week, week_numbers
 from simiam.robot.quickbot import MAX_VEL_80RPM, RobotSpec
 
 
@@ -32,6 +32,12 @@ def test_a_week_is_named_as_a_number_or_weekN(given) -> None:
 def test_an_unknown_week_names_the_weeks_there_are(given) -> None:
     with pytest.raises(ValueError, match=r"no such week: .*week1, week2, week3, week4"):
         get_week(given)
+
+
+def test_last_week_is_the_declared_week_before() -> None:
+    assert [previous_week(n) for n in (2, 3, 4)] == [1, 2, 3]
+    with pytest.raises(ValueError, match="first week"):
+        previous_week(1)
 
 
 def test_each_block_belongs_to_the_week_that_declares_it() -> None:
@@ -119,6 +125,7 @@ def test_a_week_is_added_by_adding_its_file(extra_weeks: Path) -> None:
     weeks.refresh()
     assert week_numbers()[-1] == 9
     assert get_week("week9").seconds == 1.5 and get_week(9).spec.week == 9
+    assert previous_week(9) == 4  # last week is the declared one before, numbers may have gaps
     with pytest.raises(ValueError, match="week9"):
         get_week(10)
 
@@ -140,7 +147,8 @@ def test_a_week_is_immutable() -> None:
         get_week(3).seconds = 1.0  # type: ignore[misc]
 
 
-def test_a_declared_week_reaches_the_command_lines(extra_weeks: Path, tmp_path: Path, capsys) -> None:
+def test_a_declared_week_reaches_the_command_lines(extra_weeks: Path, tmp_path: Path, capsys,
+                                                  monkeypatch) -> None:
     """A week declared as one file (week 9: week 4's robot and files, nothing new to write, a 1.5 s run)
     is a week of every front door, with no other edit: grade, the platform commands, batch, simiam run,
     the stub generator and migrate."""
@@ -183,3 +191,10 @@ def test_a_declared_week_reaches_the_command_lines(extra_weeks: Path, tmp_path: 
                                dry_run=True)
     assert migrate.main(moved) == migrate.EXIT_USAGE  # this checkout's shipped_blocks.py predates week 9
     assert "has no week9 yet (instructors: python -m simiam.course.stubs)" in capsys.readouterr().err
+    manifest: dict = {}  # once the generator has run, migrate carries week 4's blocks into week 9
+    exec(generated.files["simiam/course/shipped_blocks.py"], manifest)
+    monkeypatch.setattr(migrate, "SHIPPED", manifest["SHIPPED"])
+    stubs.write(generated, tmp_path)
+    moved.target = str(tmp_path / "assignments" / "week9")
+    assert migrate.main(moved) == migrate.EXIT_OK
+    assert "simiam migrate week9" in capsys.readouterr().out

@@ -63,9 +63,19 @@ def get_week(week: int | str) -> Week:
     return weeks[int(text)]
 
 
+def previous_week(week: int) -> int:
+    """The declared week before `week` (the one `simiam migrate` carries blocks from); ValueError for the
+    first week or an undeclared one."""
+    numbers = week_numbers()
+    number = get_week(week).number
+    if number == numbers[0]:
+        raise ValueError(f"week {number} is the first week of the course")
+    return numbers[numbers.index(number) - 1]
+
+
 def all_blocks() -> tuple[Placeholder, ...]:
     """The code blocks of every week (each new in its week), in week order."""
     return tuple(block for week in all_weeks() for block in week.blocks)
 
 
-__all__ = ["Week", "all_blocks", "all_weeks", "get_week", "refresh", "week_numbers"]
+__all__ = ["Week", "all_blocks", "all_weeks", "get_week", "previous_week", "refresh", "week_numbers"]
