@@ -14,6 +14,7 @@ import difflib
 import sys
 from dataclasses import dataclass
 from pathlib import Path
+from types import FrameType
 
 from simiam.control.controller import Controller, Inputs
 from simiam.control.norm import norm
@@ -38,7 +39,7 @@ _FRAMEWORK = Path(__file__).resolve().parents[1]
 
 def _caller_location() -> str:
     """'qb_supervisor.py, line 57: ' for the nearest caller outside simiam, or '' when simiam called."""
-    frame = sys._getframe(1)
+    frame: FrameType | None = sys._getframe(1)
     while frame is not None:
         try:
             path = Path(frame.f_code.co_filename).resolve()
@@ -161,6 +162,8 @@ class Supervisor:
 
     def _ir_distances(self) -> list:
         # the original looks at ir_distances(1:5): all five sensors, sides included
+        if self.robot is None:
+            raise ValueError("no robot yet: events need the robot the simulator attaches")
         return list(self.robot.get_ir_distances())[:5]
 
     def inputs(self) -> Inputs:
