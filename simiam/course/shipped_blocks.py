@@ -59,4 +59,31 @@ SHIPPED: dict[int, dict[str, list[tuple]]] = {
             ("get_ir_distances", 1, 2, 19, "cdd2f0f97318d5ef"),
         ],
     },
+    5: {
+        "ao_and_gtg.py": [
+            ("AOandGTG.execute", 1, 5, 55, "7356bf818c89de67"),
+        ],
+        "avoid_obstacles.py": [
+            ("AvoidObstacles.__init__", 1, 4, 32, "d45f0baf5f0076b4"),
+            ("AvoidObstacles.execute", 1, 4, 53, "ea6767b0a8405bc4"),
+            ("AvoidObstacles.apply_sensor_geometry", 1, 4, 83, "4aaeec608f416631"),
+            ("AvoidObstacles.get_transformation_matrix", 1, 4, 101, "aff0a4ea696a4f9b"),
+        ],
+        "differential_drive.py": [
+            ("uni_to_diff", 1, 2, 17, "4a3d747f72afaad3"),
+        ],
+        "go_to_goal.py": [
+            ("GoToGoal.__init__", 1, 3, 24, "d45f0baf5f0076b4"),
+            ("GoToGoal.execute", 1, 3, 44, "6ea9f0cb1714bd70"),
+            ("GoToGoal.execute", 2, 3, 51, "67dabd64f946c78c"),
+            ("GoToGoal.execute", 3, 3, 57, "c319d9d978c7ce89"),
+        ],
+        "qb_supervisor.py": [
+            ("QBSupervisor.execute", 1, 5, 78, "5b4b395aa4386bbe"),
+            ("QBSupervisor.update_odometry", 1, 2, 161, "3a9e7d085bc8639e"),
+        ],
+        "quickbot.py": [
+            ("get_ir_distances", 1, 2, 19, "cdd2f0f97318d5ef"),
+        ],
+    },
 }

@@ -250,7 +250,7 @@ def test_refuses_and_changes_nothing(w2w3, capsys, breakage):
     "argv",
     [
         ["week1", "--from", "w2", "--to", "w3"],
-        ["week5", "--from", "w2", "--to", "w3"],
+        ["week9", "--from", "w2", "--to", "w3"],
         ["weekly", "--from", "w2", "--to", "w3"],
         ["week3", "--from", "nowhere", "--to", "w3"],
         ["week3", "--from", "w2", "--to", "nowhere"],

@@ -28,16 +28,17 @@ import mistakes
 import numpy as np
 import pytest
 from physics_golden import DATA, GOLDEN, wrong
-from week5_setup import WEEK5
 
 from simiam.control import Inputs, Pose2D, RobotView
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
+from simiam.course.weeks import get_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
 
 ROOT = Path(__file__).resolve().parents[2]
 SOLUTION = ROOT / "solutions/week5"
+WEEK5 = get_week(5)
 SPEC = WEEK5.spec
 TOL = 1e-6
 OPEN_LOOP_TOL = 1e-9
