@@ -61,7 +61,7 @@ SHIPPED: dict[int, dict[str, list[tuple]]] = {
     },
     5: {
         "ao_and_gtg.py": [
-            ("AOandGTG.execute", 1, 5, 55, "7356bf818c89de67"),
+            ("AOandGTG.execute", 1, 5, 62, "7356bf818c89de67"),
         ],
         "avoid_obstacles.py": [
             ("AvoidObstacles.__init__", 1, 4, 32, "d45f0baf5f0076b4"),
