@@ -223,6 +223,14 @@ def _start(week: int, submission: Path, tmp: Path, limits: Limits | None, sandbo
     return _Started(spliced, problems, notices, session)
 
 
+def _open_session(job: _Job, folder: Path, others: list[StudentSession]) -> StudentSession:
+    """A worker on another folder for one check (closed with the grading's own)."""
+    other = StudentSession(job.week, folder, job.limits, sandbox=job.sandbox)
+    others.append(other)
+    other.start()
+    return other
+
+
 def _import_report() -> None:
     """Import the HTML report (jinja2) now, while the worker starts, rather than after the checks."""
     try:
@@ -238,6 +246,7 @@ def _grade(job: _Job, started: _Started) -> dict:
     assert started.session is not None
     problems, session = started.problems, started.session
     job.extra["notices"] = started.notices
+    others: list[StudentSession] = []  # sessions checks opened on other folders (grader.earlier)
     try:
         try:
             loaded = session.load()
@@ -267,6 +276,8 @@ def _grade(job: _Job, started: _Started) -> dict:
             traces=job.traces,
             replay_prefix=prefix + (" --hidden" if job.hidden else "") + f" --seed {job.seed}",
             submission=str(job.submission),
+            spliced=started.spliced,
+            open_session=lambda folder: _open_session(job, folder, others),
         )
         results: list[CheckResult] = []
         timing = {}
@@ -279,6 +290,8 @@ def _grade(job: _Job, started: _Started) -> dict:
         job.extra["timing"] = {"total_seconds": round(time.monotonic() - job.began, 3), "checks": timing}
     finally:
         session.close()
+        for other in others:
+            other.close()
     return submission_result(
         week=job.week,
         seed=job.seed,

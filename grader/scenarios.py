@@ -45,10 +45,10 @@ class Run:
         return s["x"][-1], s["y"][-1], s["theta"][-1]
 
 
-def _brain(ctx: Context, settings: dict[str, Any]):
+def _brain(ctx: Context, settings: dict[str, Any], session: Any = None):
     from grader.sandbox.session import RemoteBrain
 
-    return RemoteBrain(ctx.session, settings)
+    return RemoteBrain(session if session is not None else ctx.session, settings)
 
 
 def run(
@@ -61,9 +61,11 @@ def run(
     start: tuple[float, float, float] | None = None,
     goal: tuple[float, float] | None = None,
     goal_radius: float | None = None,
+    session: Any = None,
 ) -> Run:
     """Run the student's supervisor with `settings` for `seconds` (stop at a collision, or once the TRUE
-    position is within `goal_radius` of `goal`)."""
+    position is within `goal_radius` of `goal`). `session`: another worker than ctx.session (e.g.
+    grader.earlier's, with the course's versions of earlier weeks' parts)."""
     config = ctx.config
     world = world or load_world(config.world)
     start = start or world.start
@@ -72,7 +74,7 @@ def run(
         label, Trace(week=ctx.week, dt=config.dt, world=world.to_json(), robot={}, start=list(start))
     )
     try:
-        brain = _brain(ctx, settings)
+        brain = _brain(ctx, settings, session)
         sim = Simulator(sim_goal, brain, ctx.spec, dt=config.dt, start=start)
     except SandboxError as exc:
         result.problem, result.sandbox_error = _words(exc, 0.0), exc

@@ -49,6 +49,8 @@ class Context:
     memo: dict[Any, Any] = field(default_factory=dict)  # runs shared between checks of one grading
     submission: str = ""  # the folder as the student named it (for the replay snippet)
     last_probe: tuple[str, dict[str, Any]] | None = None  # the last probe sent: what a replay repeats
+    spliced: Any = None  # the spliced submission folder the session runs (a Path), when the engine has one
+    open_session: Callable[[Any], Any] | None = None  # another session on a folder; the engine closes it
 
     @property
     def config(self) -> Week:

@@ -102,6 +102,8 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None) ->
 
     # The hidden checks read their data from $SIMIAM_HIDDEN: point it at the secret, never the package.
     os.environ["SIMIAM_HIDDEN"] = str(secret.hidden_dir)
+    if fill_from is not None:  # the course's versions of earlier weeks' parts, for scenarios (grader.earlier)
+        os.environ["SIMIAM_HANDOUT"] = str(fill_from)
     filled = []
     with tempfile.TemporaryDirectory(prefix="simiam-upload-") as tmp:
         folder = collect(upload, secret.week, Path(tmp) / f"week{secret.week}")

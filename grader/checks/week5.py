@@ -1,0 +1,363 @@
+"""Week 5 checks: the blend of u_gtg and u_ao (between the two, and smooth), the switching (the right state
+for every combination of events), and runs to goals in the week-5 world, blending and switching: the goal
+reached on the TRUE pose, no collision, and (switching) not too many switches per second; hidden runs from
+other start poses to other goals, each one the reference solution completes.
+
+The blend is probed with u_ao and u_gtg chosen by the grader (grader/inside/probes_week5.py), so a week-4
+mistake cannot change it; the runs use the course's versions of the earlier weeks' parts (grader.earlier).
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+from grader import earlier, scenarios
+from grader.checks import Check, Context, Mismatch, Outcome
+from grader.checks.answers import fmt, vector
+from grader.domains import Floats, Integers, SampledFrom
+from grader.properties import run_property
+from simiam.world import World, load_world
+
+BLEND = ("ao_and_gtg.py",)
+SWITCH = ("qb_supervisor.py",)
+ALL = ("differential_drive.py", "quickbot.py", "go_to_angle.py", "go_to_goal.py", "avoid_obstacles.py",
+       "ao_and_gtg.py", "qb_supervisor.py")
+D_STOP = 0.05        # the arrival radius, judged on the TRUE position
+ROBOT_D_STOP = 0.02  # the supervisor stops a little inside it, so odometry drift cannot stop it just outside
+MAX_RATE = 4.0       # switches per second: the reference solution needs at most 1.5 in every run here
+HIDDEN_RUNS = 3      # per kind (blending, switching), drawn per seed from the hidden set
+POSE = (0.2, -0.1, 0.4)  # where the robot is when the blend is probed
+STATES = ("go_to_goal", "avoid_obstacles", "ao_and_gtg", "stop")
+D_AT_OBS, D_UNSAFE = 0.25, 0.10  # the week's thresholds (the supervisor's constructor, provided)
+VISIBLE_GOALS = {"blending": ((1.0, 1.0), (0.3, -1.0)), "switching": ((1.0, 1.0), (-1.0, 1.0))}
+SWITCH_HINT = ("Hint: at the goal stop; unsafe: avoid_obstacles; at an obstacle: ao_and_gtg; otherwise "
+               "go_to_goal")
+
+
+def _vec(v: tuple[float, float]) -> str:
+    return f"({fmt(v[0])}, {fmt(v[1])})"
+
+
+def _polar(length: float, heading: float) -> tuple[float, float]:
+    return length * math.cos(heading), length * math.sin(heading)
+
+
+def _blends(ctx: Context, pairs: list[tuple[tuple[float, float], tuple[float, float]]]) -> list[tuple]:
+    """The student's u_ao_gtg for each (u_gtg, u_ao), probed with the robot at POSE."""
+    calls = [{"u_ao": list(u_ao), "pose": list(POSE), "goal": [POSE[0] + u_gtg[0], POSE[1] + u_gtg[1]]}
+             for u_gtg, u_ao in pairs]
+    answer = ctx.probe("blend", calls=calls)
+    if not isinstance(answer, list) or len(answer) != len(calls):
+        raise Mismatch("AOandGTG.execute gave no answer")
+    out = []
+    for (u_gtg, u_ao), got in zip(pairs, answer, strict=True):
+        where = f"with u_gtg = {_vec(u_gtg)} and u_ao = {_vec(u_ao)} your u_ao_gtg"
+        raw = got.get("u_ao_gtg") if isinstance(got, dict) else None
+        if isinstance(raw, list) and all(isinstance(c, list) and len(c) == 1 for c in raw):
+            raw = [c[0] for c in raw]  # a 2x1 column is fine too
+        out.append(tuple(vector(raw, 2, where)))
+    return out
+
+
+def _weights(u_gtg, u_ao, blend) -> tuple[float, float]:
+    """(a, b) with blend = a * u_gtg + b * u_ao (u_gtg and u_ao not parallel)."""
+    det = u_gtg[0] * u_ao[1] - u_gtg[1] * u_ao[0]
+    a = (blend[0] * u_ao[1] - blend[1] * u_ao[0]) / det
+    b = (u_gtg[0] * blend[1] - u_gtg[1] * blend[0]) / det
+    return a, b
+
+
+def between(ctx: Context) -> Outcome:
+    """u_ao_gtg = a * u_gtg + b * u_ao with a > 0 and b > 0: inside the cone the two vectors span."""
+
+    def case(ctx: Context, gtg_length: float, gtg_heading: float, ao_length: float, turn: float,
+             side: int) -> None:
+        u_gtg = _polar(gtg_length, gtg_heading)
+        u_ao = _polar(ao_length, gtg_heading + side * turn)
+        blend = _blends(ctx, [(u_gtg, u_ao)])[0]
+        where = f"with u_gtg = {_vec(u_gtg)} and u_ao = {_vec(u_ao)} your u_ao_gtg was {_vec(blend)}"
+        size = math.hypot(*blend)
+        if not size > 1e-12:
+            raise Mismatch(f"{where}: a zero vector has no heading. {_BLEND_HINT}")
+        a, b = _weights(u_gtg, u_ao, blend)
+        part_gtg, part_ao = a * gtg_length, b * ao_length  # what each vector contributes, in metres
+        floor = 1e-9 * (abs(part_gtg) + abs(part_ao))
+        if part_gtg <= floor or part_ao <= floor:
+            leaves = "u_gtg" if part_gtg <= floor else "u_ao"
+            how = "leaves out" if abs(part_gtg if leaves == "u_gtg" else part_ao) <= floor else "subtracts"
+            raise Mismatch(
+                f"{where} = {fmt(a)} * u_gtg + {fmt(b)} * u_ao: it {how} {leaves}, so it does not lie "
+                f"between the two vectors. {_BLEND_HINT}"
+            )
+
+    examples = [
+        {"gtg_length": 1.0, "gtg_heading": 0.0, "ao_length": 0.3, "turn": 1.5, "side": 1},
+        {"gtg_length": 2.5, "gtg_heading": 2.0, "ao_length": 0.05, "turn": 2.5, "side": -1},
+        {"gtg_length": 0.06, "gtg_heading": -1.0, "ao_length": 1.2, "turn": 0.3, "side": 1},
+    ]
+    domains = {"gtg_length": Floats(0.05, 3.0), "gtg_heading": Floats(-math.pi, math.pi),
+               "ao_length": Floats(0.02, 1.5), "turn": Floats(0.26, 2.6), "side": SampledFrom([-1, 1])}
+    return run_property(ctx, "week5.blend.between", domains, case, examples=examples, max_examples=20,
+                        passed="u_ao_gtg lies between u_gtg and u_ao")
+
+
+_BLEND_HINT = ("Hint: alpha * u_gtg + (1 - alpha) * u_ao with 0 < alpha < 1 (normalising both first is "
+               "fine)")
+_SWEEP = 24      # samples along each sweep
+_REFINE = 6      # halvings of the worst step: a jump that survives them is a discontinuity
+_JUMP = 0.05     # rad: a jump smaller than this after refining is not worth a word
+
+
+def _heading(blend: tuple) -> float:
+    return math.atan2(blend[1], blend[0])
+
+
+def _sweeps(gtg_heading: float, turn: float) -> dict[str, object]:
+    """Three one-parameter families of (u_gtg, u_ao): |u_gtg| from 0.05 to 3 m, |u_ao| from 0.01 to
+    1.5 m (both geometric), and the angle between them from 0.5 to 2.6 rad."""
+    def by_gtg(s: float):
+        return _polar(0.05 * 60 ** s, gtg_heading), _polar(0.4, gtg_heading + turn)
+
+    def by_ao(s: float):
+        return _polar(1.0, gtg_heading), _polar(0.01 * 150 ** s, gtg_heading + turn)
+
+    def by_angle(s: float):
+        return _polar(1.0, gtg_heading), _polar(0.4, gtg_heading + math.copysign(0.5 + 2.1 * s, turn))
+
+    return {"the length of u_gtg": by_gtg, "the length of u_ao": by_ao,
+            "the angle between u_gtg and u_ao": by_angle}
+
+
+def _jump(a: float, b: float) -> float:
+    return abs(math.atan2(math.sin(b - a), math.cos(b - a)))
+
+
+def continuous(ctx: Context) -> Outcome:
+    """The blend's heading changes smoothly: sweep one input at a time, refine the largest step; a jump
+    that does not shrink with the step is a discontinuity (an `if` inside the blend)."""
+
+    def case(ctx: Context, gtg_heading: float, turn: float) -> None:
+        for what, family in _sweeps(gtg_heading, turn).items():
+            points = [k / (_SWEEP - 1) for k in range(_SWEEP)]
+            headings = [_heading(b) for b in _blends(ctx, [family(s) for s in points])]
+            k = max(range(_SWEEP - 1), key=lambda i: _jump(headings[i], headings[i + 1]))
+            lo, hi, h_lo, h_hi = points[k], points[k + 1], headings[k], headings[k + 1]
+            first = _jump(h_lo, h_hi)
+            if first < _JUMP:
+                continue
+            for _ in range(_REFINE):
+                mid = (lo + hi) / 2
+                h_mid = _heading(_blends(ctx, [family(mid)])[0])
+                if _jump(h_lo, h_mid) >= _jump(h_mid, h_hi):
+                    hi, h_hi = mid, h_mid
+                else:
+                    lo, h_lo = mid, h_mid
+            if _jump(h_lo, h_hi) > max(_JUMP, first / 2):
+                (g0, a0), (g1, a1) = family(lo), family(hi)
+                raise Mismatch(
+                    f"changing only {what}, from u_gtg = {_vec(g0)}, u_ao = {_vec(a0)} to u_gtg = "
+                    f"{_vec(g1)}, u_ao = {_vec(a1)}, the heading of your u_ao_gtg jumps from "
+                    f"{fmt(h_lo)} to {fmt(h_hi)} rad: the blend must change smoothly with its inputs "
+                    "(no `if` choosing between vectors or weights: switching is the supervisor's job)"
+                )
+
+    domains = {"gtg_heading": Floats(-math.pi, math.pi), "turn": SampledFrom([-1.2, -0.7, 0.9, 1.6])}
+    return run_property(ctx, "week5.blend.continuous", domains, case,
+                        examples=[{"gtg_heading": 0.3, "turn": 1.2}], max_examples=3,
+                        passed="u_ao_gtg changes smoothly with u_gtg and u_ao")
+
+
+# ----------------------------------------------------------------------------------------- switching
+_EVENTS = {  # what the IR distances make true (the supervisor's events look at all five sensors)
+    "cleared": "every IR distance over d_at_obs (obstacle_cleared)",
+    "near": "an IR distance under d_at_obs = 0.25 m but over d_unsafe = 0.10 m (at_obstacle)",
+    "unsafe": "an IR distance under d_unsafe = 0.10 m (unsafe, at_obstacle)",
+}
+
+
+def expected_state(at_goal: bool, situation: str) -> str:
+    """The week's switching rule (the manual's, the author's reference)."""
+    if at_goal:
+        return "stop"
+    return {"unsafe": "avoid_obstacles", "near": "ao_and_gtg", "cleared": "go_to_goal"}[situation]
+
+
+def states(ctx: Context) -> Outcome:
+    """One step of the switching from each state, for every combination of at_goal and obstacle events."""
+
+    def case(ctx: Context, state: str, situation: str, at_goal: bool, sensor: int, near: float,
+             close: float) -> None:
+        distances = [0.3] * 5
+        if situation != "cleared":
+            distances[sensor] = near if situation == "near" else close
+        answer = ctx.probe("switching", cases=[{"state": state, "distances": distances, "at_goal": at_goal}])
+        got = answer[0].get("state") if isinstance(answer, list) and answer and isinstance(answer[0], dict) \
+            else None
+        want = expected_state(at_goal, situation)
+        if got != want:
+            goal = "at the goal (by the estimate)" if at_goal else "1 m from the goal"
+            shown = repr(got)[:60] if isinstance(got, str) else "no state"
+            raise Mismatch(
+                f"in state {state!r}, {goal}, with IR distances {', '.join(fmt(d) for d in distances)} "
+                f"({_EVENTS[situation]}), your block switched to {shown}; expected {want!r}. {SWITCH_HINT}"
+            )
+
+    examples = [{"state": s, "situation": e, "at_goal": g, "sensor": 2, "near": 0.2, "close": 0.06}
+                for g in (False, True) for e in _EVENTS for s in STATES]
+    domains = {"state": SampledFrom(list(STATES)), "situation": SampledFrom(list(_EVENTS)),
+               "at_goal": SampledFrom([False, True]), "sensor": Integers(0, 4),
+               "near": Floats(D_UNSAFE + 0.005, D_AT_OBS - 0.005), "close": Floats(0.04, D_UNSAFE - 0.005)}
+    return run_property(ctx, "week5.switching.states", domains, case, examples=examples, max_examples=16,
+                        passed="the switching picks the right state for every combination of events")
+
+
+# --------------------------------------------------------------------------------------------- runs
+def seen_from(world: World, start: tuple[float, float, float], goal: tuple[float, float],
+              label: str) -> tuple[World, tuple[float, float]]:
+    """The world and the goal in the frame of the start pose: the robot starts at (0, 0, 0) there, where
+    the student's supervisor starts its estimate."""
+    xs, ys, ts = start
+    c, s = math.cos(-ts), math.sin(-ts)
+
+    def move(x: float, y: float) -> tuple[float, float]:
+        return c * (x - xs) - s * (y - ys), s * (x - xs) + c * (y - ys)
+
+    return World(label, [[move(x, y) for x, y in poly] for poly in world.obstacles]), move(*goal)
+
+
+def switches(run: scenarios.Run, first: str) -> int:
+    """State changes in the run, counted from the state the run started in."""
+    names = [first] + [s for s in run.trace.steps["state"][1:]]
+    return sum(1 for a, b in zip(names, names[1:], strict=False) if a != b)
+
+
+def _drive(ctx: Context, check_id: str, mode: str, goal: tuple[float, float],
+           start: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> tuple[scenarios.Run, dict, str]:
+    """One run to `goal` from `start` (memoised per grading): the run, its figures and a note."""
+    key = ("week5-run", mode, goal, start)
+    if key not in ctx.memo:
+        session, note = earlier.scenario_session(ctx)
+        label = f"{mode} to ({goal[0]:g}, {goal[1]:g})"
+        world = load_world(ctx.config.world)
+        if start != (0.0, 0.0, 0.0):
+            label += f" from ({start[0]:g}, {start[1]:g}, {start[2]:g})"
+            world, goal_here = seen_from(world, start, goal, f"week-5 world seen from {start}")
+        else:
+            goal_here = goal
+        first = "ao_and_gtg" if mode == "blending" else "go_to_goal"
+        settings = ctx.config.settings.with_changes(goal=list(goal_here), d_stop=ROBOT_D_STOP, state=first,
+                                                    is_blending=mode == "blending").as_dict()
+        r = scenarios.run(ctx, label, settings, ctx.config.seconds, world=world, goal=goal_here,
+                          goal_radius=D_STOP, session=session)
+        count = switches(r, first)
+        figures = {**r.metrics, "switches": count, "switch_rate": count / max(r.trace.seconds, 1e-9),
+                   "problem": r.problem}
+        ctx.memo[key] = (r, figures, note)
+    return ctx.memo[key]
+
+
+def _words(r: scenarios.Run, figures: dict) -> tuple[bool, str]:
+    if r.problem:
+        return False, r.problem
+    if r.collision is not None:
+        return False, f"collided at t = {r.collision['t']:.2f} s"
+    if not r.reached:
+        return False, (f"not reached in {figures['seconds']:g} s, {figures['final_distance']:.2f} m away at "
+                       "the end")
+    return True, f"reached in {r.t_goal:.1f} s"
+
+
+def _reach(mode: str, check_id: str):
+    def run(ctx: Context) -> Outcome:
+        good, lines, details, done, notes = 0, [], [], [], set()
+        for goal in VISIBLE_GOALS[mode]:
+            r, figures, note = _drive(ctx, check_id, mode, goal)
+            scenarios.keep(ctx, check_id, r)
+            ok, text = _words(r, figures)
+            good += ok
+            lines.append(f"({goal[0]:g}, {goal[1]:g}) {text}")
+            details.append(figures)
+            done.append(r)
+            notes.add(note)
+        message = "; ".join(lines) + "".join(f". Note: {n}" for n in sorted(notes) if n)
+        if good < len(done) and not any(r.problem for r in done):
+            message += f". {_RUN_HINT[mode]}"
+        return Outcome(good / len(done), message, {"runs": details, "traces": scenarios.trace_keys(done)},
+                       status=scenarios.status_of(done))
+
+    run.__name__ = f"{mode}_reach"
+    return run
+
+
+_RUN_HINT = {
+    "blending": "Hint: the blend steers the whole way; check the blend checks above, and replay the run",
+    "switching": f"Hint: the switching checks above say which state is wrong. {SWITCH_HINT}",
+}
+
+
+def switch_rate(ctx: Context) -> Outcome:
+    """The switching runs (the visible goals) switch at most MAX_RATE times per second."""
+    lines, details, worst = [], [], 0.0
+    for goal in VISIBLE_GOALS["switching"]:
+        r, figures, _ = _drive(ctx, "week5.switching.reach_goal", "switching", goal)
+        if r.problem:
+            return Outcome(0.0, f"({goal[0]:g}, {goal[1]:g}): {r.problem}", status=scenarios.status_of([r]))
+        worst = max(worst, figures["switch_rate"])
+        lines.append(f"({goal[0]:g}, {goal[1]:g}) {figures['switches']} switches in {r.trace.seconds:.1f} s")
+        details.append(figures)
+    ok = worst <= MAX_RATE
+    verdict = (f"at most {worst:.1f} switches per second" if ok else
+               f"{worst:.1f} switches per second, more than {MAX_RATE:g}: the robot chatters between "
+               "controllers (a state change every step or two); each step must pick the state from the "
+               "events alone")
+    return Outcome(float(ok), "; ".join(lines) + f": {verdict}", {"runs": details, "max_rate": worst})
+
+
+def hidden_runs(mode: str):
+    def run(ctx: Context) -> Outcome:
+        from grader.hidden import load_hidden
+
+        data = load_hidden(5)
+        if not data:
+            return Outcome(0.0, "the instructor's hidden set is not here (it runs at official grading)",
+                           status="error")
+        pool = [v for v in data["variants"] if v["mode"] == mode]
+        picks = random.Random(f"{ctx.seed}:week5-{mode}").sample(pool, min(HIDDEN_RUNS, len(pool)))
+        check_id = f"week5.{mode}.hidden"
+        good, lines, details, done = 0, [], [], []
+        for v in picks:
+            goal, start = tuple(v["goal"]), tuple(v["start"])
+            r, figures, _ = _drive(ctx, check_id, mode, goal, start)  # type: ignore[arg-type]
+            scenarios.keep(ctx, check_id, r)
+            ok, text = _words(r, figures)
+            if ok and mode == "switching" and figures["switch_rate"] > MAX_RATE:
+                ok, text = False, f"{text}, but with {figures['switch_rate']:.1f} switches per second"
+            good += ok
+            lines.append(f"{r.label}: {text}")
+            details.append({"variant": v, **figures})
+            done.append(r)
+        found = {"runs": details, "traces": scenarios.trace_keys(done)}
+        return Outcome(good / len(done), "; ".join(lines), found, status=scenarios.status_of(done))
+
+    run.__name__ = f"{mode}_hidden"
+    return run
+
+
+CHECKS = [
+    Check("week5.blend.between", "u_ao_gtg lies between u_gtg and u_ao", "property", 1.0, between, BLEND),
+    Check("week5.blend.continuous", "u_ao_gtg changes smoothly with its inputs", "property", 1.0, continuous,
+          BLEND),
+    Check("week5.switching.states", "the switching picks the right state for each event", "property", 1.5,
+          states, SWITCH),
+    Check("week5.blending.reach_goal", "blending: two goals in the week-5 world, no collision", "scenario",
+          1.5, _reach("blending", "week5.blending.reach_goal"), ALL),
+    Check("week5.switching.reach_goal", "switching: two goals in the week-5 world, no collision", "scenario",
+          1.5, _reach("switching", "week5.switching.reach_goal"), ALL),
+    Check("week5.switching.switch_rate", f"switching: at most {MAX_RATE:g} switches per second", "scenario",
+          0.5, switch_rate, ALL),
+    Check("week5.blending.hidden", "blending: other starts and goals drawn per seed", "scenario", 1.0,
+          hidden_runs("blending"), ALL, visibility="hidden"),
+    Check("week5.switching.hidden", "switching: other starts and goals drawn per seed", "scenario", 1.0,
+          hidden_runs("switching"), ALL, visibility="hidden"),
+]
