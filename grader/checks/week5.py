@@ -140,7 +140,13 @@ def continuous(ctx: Context) -> Outcome:
     def case(ctx: Context, gtg_heading: float, turn: float) -> None:
         for what, family in _sweeps(gtg_heading, turn).items():
             points = [k / (_SWEEP - 1) for k in range(_SWEEP)]
-            headings = [_heading(b) for b in _blends(ctx, [family(s) for s in points])]
+            blends = _blends(ctx, [family(s) for s in points])
+            for s, b in zip(points, blends, strict=True):
+                if not math.hypot(*b) > 1e-12:
+                    g, a = family(s)
+                    raise Mismatch(f"with u_gtg = {_vec(g)} and u_ao = {_vec(a)} your u_ao_gtg was "
+                                   f"{_vec(b)}: a zero vector has no heading to follow. {_BLEND_HINT}")
+            headings = [_heading(b) for b in blends]
             k = max(range(_SWEEP - 1), key=lambda i: _jump(headings[i], headings[i + 1]))
             lo, hi, h_lo, h_hi = points[k], points[k + 1], headings[k], headings[k + 1]
             first = _jump(h_lo, h_hi)
@@ -263,8 +269,8 @@ def _words(r: scenarios.Run, figures: dict) -> tuple[bool, str]:
     if r.collision is not None:
         return False, f"collided at t = {r.collision['t']:.2f} s"
     if not r.reached:
-        return False, (f"not reached in {figures['seconds']:g} s, {figures['final_distance']:.2f} m away at "
-                       "the end")
+        return False, (f"not reached in {figures['seconds']:.0f} s, {figures['final_distance']:.2f} m away "
+                       "at the end")
     return True, f"reached in {r.t_goal:.1f} s"
 
 
@@ -292,20 +298,27 @@ def _reach(mode: str, check_id: str):
 
 _RUN_HINT = {
     "blending": "Hint: the blend steers the whole way; check the blend checks above, and replay the run",
-    "switching": f"Hint: the switching checks above say which state is wrong. {SWITCH_HINT}",
+    "switching": "Hint: the switching check above says which state is wrong (at the goal stop; unsafe: "
+                 "avoid_obstacles; at an obstacle: ao_and_gtg; otherwise go_to_goal)",
 }
 
 
 def switch_rate(ctx: Context) -> Outcome:
-    """The switching runs (the visible goals) switch at most MAX_RATE times per second."""
+    """The switching runs to the visible goals that get there switch at most MAX_RATE times per second
+    (a run that never gets there says nothing about chattering: the reach check scores it)."""
     lines, details, worst = [], [], 0.0
     for goal in VISIBLE_GOALS["switching"]:
         r, figures, _ = _drive(ctx, "week5.switching.reach_goal", "switching", goal)
         if r.problem:
             return Outcome(0.0, f"({goal[0]:g}, {goal[1]:g}): {r.problem}", status=scenarios.status_of([r]))
+        if not r.reached or r.collision is not None:
+            continue
         worst = max(worst, figures["switch_rate"])
         lines.append(f"({goal[0]:g}, {goal[1]:g}) {figures['switches']} switches in {r.trace.seconds:.1f} s")
         details.append(figures)
+    if not details:
+        return Outcome(0.0, "no switching run reached its goal, so there is no switch rate to judge (the "
+                       "reach check says why)")
     ok = worst <= MAX_RATE
     verdict = (f"at most {worst:.1f} switches per second" if ok else
                f"{worst:.1f} switches per second, more than {MAX_RATE:g}: the robot chatters between "
