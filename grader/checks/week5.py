@@ -238,22 +238,29 @@ def switches(run: scenarios.Run, first: str) -> int:
     return sum(1 for a, b in zip(names, names[1:], strict=False) if a != b)
 
 
+def setup(config, mode: str, goal: tuple[float, float], start: tuple[float, float, float] = (0.0, 0.0, 0.0)
+          ) -> tuple[World, tuple[float, float], dict, str, str]:
+    """What one run needs: the world (seen from `start`), the goal in it, the supervisor's settings, the
+    state it starts in, and a label. tests/grader/test_hidden_week5.py runs the hidden variants with it."""
+    label = f"{mode} to ({goal[0]:g}, {goal[1]:g})"
+    world = load_world(config.world)
+    if tuple(start) != (0.0, 0.0, 0.0):
+        label += f" from ({start[0]:g}, {start[1]:g}, {start[2]:g})"
+        world, goal = seen_from(world, start, goal, f"week-5 world seen from ({start[0]:g}, {start[1]:g}, "
+                                                    f"{start[2]:g})")
+    first = "ao_and_gtg" if mode == "blending" else "go_to_goal"
+    settings = config.settings.with_changes(goal=list(goal), d_stop=ROBOT_D_STOP, state=first,
+                                            is_blending=mode == "blending").as_dict()
+    return world, goal, settings, first, label
+
+
 def _drive(ctx: Context, check_id: str, mode: str, goal: tuple[float, float],
            start: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> tuple[scenarios.Run, dict, str]:
     """One run to `goal` from `start` (memoised per grading): the run, its figures and a note."""
     key = ("week5-run", mode, goal, start)
     if key not in ctx.memo:
         session, note = earlier.scenario_session(ctx)
-        label = f"{mode} to ({goal[0]:g}, {goal[1]:g})"
-        world = load_world(ctx.config.world)
-        if start != (0.0, 0.0, 0.0):
-            label += f" from ({start[0]:g}, {start[1]:g}, {start[2]:g})"
-            world, goal_here = seen_from(world, start, goal, f"week-5 world seen from {start}")
-        else:
-            goal_here = goal
-        first = "ao_and_gtg" if mode == "blending" else "go_to_goal"
-        settings = ctx.config.settings.with_changes(goal=list(goal_here), d_stop=ROBOT_D_STOP, state=first,
-                                                    is_blending=mode == "blending").as_dict()
+        world, goal_here, settings, first, label = setup(ctx.config, mode, goal, start)
         r = scenarios.run(ctx, label, settings, ctx.config.seconds, world=world, goal=goal_here,
                           goal_radius=D_STOP, session=session)
         count = switches(r, first)

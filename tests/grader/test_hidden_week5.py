@@ -1,0 +1,58 @@
+"""The instructor's hidden week-5 variants are fair: the reference solution completes every one as the
+grader runs it (the world seen from the start pose, the grader's settings): the goal reached on the TRUE
+pose, no collision, and (switching) well under the switch-rate limit."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from grader.checks.week5 import D_STOP, MAX_RATE, setup
+from grader.hidden import load_hidden
+from simiam.control.local_brain import LocalBrain
+from simiam.course.loader import load_submission
+from simiam.course.weeks import get_week
+from simiam.simulator import Simulator
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_hidden_set_is_present_and_big_enough() -> None:
+    data = load_hidden(5)
+    assert data is not None
+    modes = [v["mode"] for v in data["variants"]]
+    assert modes.count("blending") >= 10 and modes.count("switching") >= 10
+
+
+def complete(folder: Path, variant: dict) -> str | None:
+    """Why `folder`'s code fails the variant as the grader judges it, or None."""
+    config = get_week(5)
+    world, goal, settings, first, label = setup(config, variant["mode"], tuple(variant["goal"]),
+                                                tuple(variant["start"]))
+    sub = load_submission(folder, config)
+    assert sub.ok, sub.errors
+    sim = Simulator(world, LocalBrain(sub, config, settings), config.spec, dt=config.dt)
+    names = [first]
+    for _ in range(int(round(config.seconds / config.dt))):
+        rec = sim.step()
+        names.append(rec.command["state"])
+        if rec.collided:
+            return f"{label}: collided at t = {rec.t:.2f} s"
+        if math.dist(rec.pose[:2], goal) < D_STOP:
+            rate = sum(a != b for a, b in zip(names, names[1:], strict=False)) / rec.t
+            return f"{label}: {rate:.2f} switches per second" if rate > MAX_RATE / 2 else None
+    return f"{label}: not reached in {config.seconds:g} s"
+
+
+@pytest.mark.slow
+def test_reference_solution_completes_every_hidden_variant() -> None:
+    failed = [why for v in load_hidden(5)["variants"] if (why := complete(ROOT / "solutions/week5", v))]
+    assert failed == []
+
+
+def test_an_unfair_variant_is_refused() -> None:
+    """The test can fail: straight from the start into the block below it."""
+    assert complete(ROOT / "solutions/week5", {"mode": "blending", "start": [0, 0, -math.pi / 2],
+                                               "goal": [0.5, -0.9]}) is not None
