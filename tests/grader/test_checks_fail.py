@@ -37,6 +37,11 @@ MESSAGES = {
     "week4_ao_error_not_wrapped": {"week4.avoid.heading": "wrapped into [-pi, pi]"},
     "week4_gains_from_readings": {"week4.avoid.symmetric_gains": "sensor_gains must be fixed numbers"},
     "week4_stops_near_walls": {"week4.avoid.week4_world": "drove only 0.00 m"},
+    "week5_blend_subtracts_u_ao": {"week5.blend.between": "it subtracts u_ao"},
+    "week5_blend_only_goal": {"week5.blend.between": "it leaves out u_ao"},
+    "week5_blend_jumps": {"week5.blend.continuous": "changing only the length of u_ao"},
+    "week5_switching_unsafe_last": {"week5.switching.states": "expected 'avoid_obstacles'"},
+    "week5_switching_chatters": {"week5.switching.switch_rate": "chatters between controllers"},
 }
 
 

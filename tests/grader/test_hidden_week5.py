@@ -56,3 +56,18 @@ def test_an_unfair_variant_is_refused() -> None:
     """The test can fail: straight from the start into the block below it."""
     assert complete(ROOT / "solutions/week5", {"mode": "blending", "start": [0, 0, -math.pi / 2],
                                                "goal": [0.5, -0.9]}) is not None
+
+
+@pytest.mark.parametrize(("mistake", "check_id"), [
+    ("week5_blend_only_goal", "week5.blending.hidden"),
+    ("week5_switching_never_avoids", "week5.switching.hidden"),
+])
+def test_the_hidden_runs_catch_a_wrong_version(tmp_path, mistake, check_id) -> None:
+    from wrong_submissions import build
+
+    from grader.grading import grade_submission
+
+    result = grade_submission(5, build(mistake, tmp_path), seed=2014, hidden=True, only=check_id)
+    (check,) = result["checks"]
+    assert check["status"] == "failed" and check["points"] < check["max_points"], check["message"]
+    assert "collided" in check["message"]
