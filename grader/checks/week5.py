@@ -324,13 +324,13 @@ def switch_rate(ctx: Context) -> Outcome:
         lines.append(f"({goal[0]:g}, {goal[1]:g}) {figures['switches']} switches in {r.trace.seconds:.1f} s")
         details.append(figures)
     if not details:
-        return Outcome(0.0, "no switching run reached its goal, so there is no switch rate to judge (the "
-                       "reach check says why)")
+        return Outcome(0.0, "no switching run reached its goal, so there is no switch rate to judge. Hint: "
+                       "the reach check says why")
     ok = worst <= MAX_RATE
     verdict = (f"at most {worst:.1f} switches per second" if ok else
-               f"{worst:.1f} switches per second, more than {MAX_RATE:g}: the robot chatters between "
-               "controllers (a state change every step or two); each step must pick the state from the "
-               "events alone")
+               f"{worst:.1f} switches per second, more than {MAX_RATE:g}. Hint: the robot chatters between "
+               "controllers (a state change every step or two): each step must pick the state from the "
+               "events alone; the replay names the state at each step")
     return Outcome(float(ok), "; ".join(lines) + f": {verdict}", {"runs": details, "max_rate": worst})
 
 
