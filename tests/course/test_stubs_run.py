@@ -1,4 +1,4 @@
-"""Every stub folder loads and runs: the robot stays still (weeks 1-2) or drives straight (weeks 3-4)."""
+"""Every stub folder loads and runs: the robot stays still (weeks 1-2) or drives straight (weeks 3-5)."""
 
 import importlib.util
 import shutil
@@ -15,7 +15,7 @@ from simiam.world import load_world
 ROOT = Path(__file__).parents[2]
 DATA = Path(__file__).parents[1] / "data" / "blocks"
 SECONDS = 3.0
-EXPECTED = {1: "still", 2: "still", 3: "straight", 4: "straight"}
+EXPECTED = {1: "still", 2: "still", 3: "straight", 4: "straight", 5: "straight"}  # week 5: heading 0
 
 
 def behaviour(folder: Path, week: int) -> str:
