@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import random
+from collections.abc import Callable
 
 from grader import earlier, scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
@@ -113,16 +114,19 @@ def _heading(blend: tuple) -> float:
     return math.atan2(blend[1], blend[0])
 
 
-def _sweeps(gtg_heading: float, turn: float) -> dict[str, object]:
+Pair = tuple[tuple[float, float], tuple[float, float]]
+
+
+def _sweeps(gtg_heading: float, turn: float) -> dict[str, Callable[[float], Pair]]:
     """Three one-parameter families of (u_gtg, u_ao): |u_gtg| from 0.05 to 3 m, |u_ao| from 0.01 to
     1.5 m (both geometric), and the angle between them from 0.5 to 2.6 rad."""
-    def by_gtg(s: float):
+    def by_gtg(s: float) -> Pair:
         return _polar(0.05 * 60 ** s, gtg_heading), _polar(0.4, gtg_heading + turn)
 
-    def by_ao(s: float):
+    def by_ao(s: float) -> Pair:
         return _polar(1.0, gtg_heading), _polar(0.01 * 150 ** s, gtg_heading + turn)
 
-    def by_angle(s: float):
+    def by_angle(s: float) -> Pair:
         return _polar(1.0, gtg_heading), _polar(0.4, gtg_heading + math.copysign(0.5 + 2.1 * s, turn))
 
     return {"the length of u_gtg": by_gtg, "the length of u_ao": by_ao,
@@ -348,7 +352,7 @@ def hidden_runs(mode: str):
         good, lines, details, done = 0, [], [], []
         for v in picks:
             goal, start = tuple(v["goal"]), tuple(v["start"])
-            r, figures, _ = _drive(ctx, check_id, mode, goal, start)  # type: ignore[arg-type]
+            r, figures, _ = _drive(ctx, check_id, mode, goal, start)
             scenarios.keep(ctx, check_id, r)
             ok, text = _words(r, figures)
             if ok and mode == "switching" and figures["switch_rate"] > MAX_RATE:
