@@ -58,3 +58,18 @@ def test_a_week4_mistake_costs_week5_runs_only_without_the_course_versions(tmp_p
     else:
         assert check["status"] == "failed" and "collided" in check["message"]
         assert "your own code for earlier weeks' parts" in check["message"]
+
+
+def test_a_bundle_grades_week5_runs_with_its_handout(tmp_path, monkeypatch):
+    """Gradescope and PrairieLearn grade through official.grade_upload with the handout they carry: with no
+    solutions/ at hand, the runs still use the course's earlier parts (from the handout)."""
+    from grader.platforms import official
+
+    monkeypatch.setattr(earlier, "ROOT", tmp_path / "no-checkout")  # as in a bundle: no solutions/
+    monkeypatch.delenv("SIMIAM_HANDOUT", raising=False)  # grade_upload sets both; restored after the test
+    monkeypatch.setenv("SIMIAM_HIDDEN", str(ROOT / "instructor_tools/hidden"))
+    secret = official.Secret(week=5, seed=2014, hidden_dir=ROOT / "instructor_tools/hidden")
+    result = official.grade_upload(build(MISTAKE, tmp_path), secret, fill_from=ROOT / "assignments/week5")
+    runs = {c["id"]: c for c in result["checks"] if c["kind"] == "scenario"}
+    assert runs and all(c["status"] == "passed" for c in runs.values()), runs
+    assert all("Note" not in c["message"] for c in runs.values())
