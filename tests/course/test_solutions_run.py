@@ -34,6 +34,13 @@ def test_solutions_run_writes_trace_replay_and_summary(tmp_path, capsys):
     assert (tmp_path / "week3.csv").is_file() and (tmp_path / "week3.html").is_file()
 
 
+def test_week5_blending_reports_its_goal(tmp_path, capsys):
+    """Week 5 starts in ao_and_gtg, which drives to the goal too: the summary says whether it got there."""
+    assert main(_args("week5", tmp_path, solutions=True, seconds=12.0)) == 0
+    out = capsys.readouterr().out
+    assert "Goal (1, 1) reached: the robot stopped at t = 9.31 s" in out and "No collision" in out
+
+
 def test_a_submission_that_does_not_load_exits_1_with_file_and_line(tmp_path, capsys):
     folder = _folder(tmp_path, 3, "loader_syntax_error")
     assert main(_args("week3", tmp_path / "out", path=str(folder))) == 1
