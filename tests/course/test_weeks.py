@@ -96,12 +96,13 @@ def test_an_inconsistent_week_is_refused(changes, match) -> None:
         _week(**changes)
 
 
+LAST = max(week_numbers())  # the course's last real week: the throwaway week 9 copies it
 WEEK9 = '''
-from simiam.course.weeks.week4 import WEEK as _FOUR
+from simiam.course.weeks.week{base} import WEEK as _LAST
 import dataclasses
-WEEK = dataclasses.replace(_FOUR, number={number}, spec=dataclasses.replace(_FOUR.spec, week={number}),
-                           blocks=(), checks="grader.checks.week4", seconds=1.5)
-'''
+WEEK = dataclasses.replace(_LAST, number={number}, spec=dataclasses.replace(_LAST.spec, week={number}),
+                           blocks=(), checks="grader.checks.week{base}", seconds=1.5)
+'''.replace("{base}", str(LAST))
 
 
 @pytest.fixture
@@ -125,7 +126,7 @@ def test_a_week_is_added_by_adding_its_file(extra_weeks: Path) -> None:
     weeks.refresh()
     assert week_numbers()[-1] == 9
     assert get_week("week9").seconds == 1.5 and get_week(9).spec.week == 9
-    assert previous_week(9) == 4  # last week is the declared one before, numbers may have gaps
+    assert previous_week(9) == LAST  # last week is the declared one before, numbers may have gaps
     with pytest.raises(ValueError, match="week9"):
         get_week(10)
 
@@ -149,7 +150,7 @@ def test_a_week_is_immutable() -> None:
 
 def test_a_declared_week_reaches_the_command_lines(extra_weeks: Path, tmp_path: Path, capsys,
                                                   monkeypatch) -> None:
-    """A week declared as one file (week 9: week 4's robot and files, nothing new to write, a 1.5 s run)
+    """A week declared as one file (week 9: the last week's robot and files, nothing new to write, 1.5 s)
     is a week of every front door, with no other edit: grade, the platform commands, batch, simiam run,
     the stub generator and migrate."""
     import argparse
@@ -170,11 +171,11 @@ def test_a_declared_week_reaches_the_command_lines(extra_weeks: Path, tmp_path: 
 
     root = Path(__file__).resolve().parents[2]
     solutions = tmp_path / "solutions"
-    for n in (1, 2, 3, 4):
+    for n in range(1, LAST + 1):
         shutil.copytree(root / "solutions" / f"week{n}", solutions / f"week{n}")
     with pytest.raises(Exception, match=r"solutions/week9: week 9 declares differential_drive.py"):
         stubs.generate(solutions)
-    shutil.copytree(root / "solutions" / "week4", solutions / "week9")
+    shutil.copytree(root / "solutions" / f"week{LAST}", solutions / "week9")
     generated = stubs.generate(solutions)
     assert "assignments/week9/avoid_obstacles.py" in generated.files
     assert "    9: {" in generated.files["simiam/course/shipped_blocks.py"]
@@ -187,11 +188,12 @@ def test_a_declared_week_reaches_the_command_lines(extra_weeks: Path, tmp_path: 
     assert trace["week"] == 9 and trace["seconds"] == pytest.approx(1.5, abs=0.04)
 
     capsys.readouterr()
-    moved = argparse.Namespace(week="week9", source=str(solutions / "week4"), target=str(solutions / "week9"),
+    moved = argparse.Namespace(week="week9", source=str(solutions / f"week{LAST}"),
+                               target=str(solutions / "week9"),
                                dry_run=True)
     assert migrate.main(moved) == migrate.EXIT_USAGE  # this checkout's shipped_blocks.py predates week 9
     assert "has no week9 yet (instructors: python -m simiam.course.stubs)" in capsys.readouterr().err
-    manifest: dict = {}  # once the generator has run, migrate carries week 4's blocks into week 9
+    manifest: dict = {}  # once the generator has run, migrate carries the last week's blocks into week 9
     exec(generated.files["simiam/course/shipped_blocks.py"], manifest)
     monkeypatch.setattr(migrate, "SHIPPED", manifest["SHIPPED"])
     stubs.write(generated, tmp_path)
