@@ -97,6 +97,32 @@ def _body(name: str, args: dict[str, Any]) -> str | None:
             f"Inputs(v={args.get('v', 0.2)!r}, x_g=0.0, y_g=0.0, theta_d=0.0), {args.get('dt', 0.033)!r}))\n"
             "print('u_ao =', ctrl.u_ao)\n"
         )
+    if name == "blend":  # week 5: AOandGTG with the u_ao the grader chose (its AvoidObstacles stood in for)
+        lines = ["class GivenAvoid:  # hands AOandGTG the u_ao of the failing case",
+                 "    def __init__(self, u_ao):",
+                 "        self.u_ao, self.ir_distances_wf = u_ao, None",
+                 "    def execute(self, robot, state_estimate, inputs, dt):",
+                 "        return inputs.v, 0.0"]
+        for call in args["calls"]:
+            x_g, y_g = call["goal"]
+            lines += ["ctrl = sub.module('ao_and_gtg').AOandGTG()",
+                      f"ctrl.avoid = GivenAvoid({_value(call['u_ao'])})",
+                      f"ctrl.execute(robot, Pose2D(*{_value(call['pose'])}), "
+                      f"Inputs(v=0.15, x_g={x_g!r}, y_g={y_g!r}, theta_d=0.0), 0.05)",
+                      "print('u_gtg =', ctrl.u_gtg, 'u_ao =', ctrl.u_ao, 'u_ao_gtg =', ctrl.u_ao_gtg)"]
+        return "\n".join(lines) + "\n"
+    if name == "switching":  # week 5: one step of the switching from a state, with chosen IR distances
+        lines = []
+        for case in args["cases"]:
+            goal = (0.0, 0.0) if case["at_goal"] else (1.0, 0.0)
+            lines += [f"robot.get_ir_distances = lambda: {_value(case['distances'])}",
+                      "sup = sub.module('qb_supervisor').QBSupervisor()",
+                      "sup.attach_robot(robot, Pose2D(0.0, 0.0, 0.0))",
+                      f"sup.is_blending = False\nsup.goal = {goal!r}",
+                      f"sup.switch_to_state({case['state']!r})",
+                      "sup.execute(0.05)",
+                      "print('state after one step:', sup.current_state)"]
+        return "\n".join(lines) + "\n"
     return None
 
 

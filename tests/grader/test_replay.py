@@ -77,6 +77,9 @@ PROBE_CALLS = [  # one call of every probe, as the checks send them
     ("sensor_geometry", {"week": 4, "distances": [0.2] * 5, "pose": [0.1, -0.1, 1.0]}),
     ("avoid_obstacles", {"week": 4, "distances": [0.3, 0.1, 0.3, 0.3, 0.3], "pose": [0.3, -0.2, 0.7],
                          "v": 0.15}),
+    ("blend", {"week": 5, "calls": [{"u_ao": [0.02, 0.3], "pose": [0.2, -0.1, 0.4], "goal": [1.2, -0.1]}]}),
+    ("switching", {"week": 5, "cases": [{"state": "go_to_goal", "distances": [0.3, 0.3, 0.06, 0.3, 0.3],
+                                         "at_goal": False}]}),
 ]
 
 
