@@ -3,8 +3,10 @@ out of the wheel (pyproject.toml packages only simiam and grader; tests/packagin
 
 - `reference_brains`: complete reference controllers (go-to-goal, avoid-obstacles) used by `simiam bench`,
   the fleet and the closed-loop fidelity cross-checks;
+- `reference_week5`: the week-5 reference brain (the sp14 blend and the author's switching, bit-exact with
+  the recordings), which cross-checks solutions/week5 on the recorded goals the golden files hold back;
 - `hidden/weekN.json`: the hidden scenario variants of official grading (`grade --hidden`, batch), each
-  validated against the reference solution by tests/grader/test_hidden.py.
+  validated against the reference solution by tests/grader/test_hidden.py (week 5: test_hidden_week5.py).
 
 Importable with the repository root on sys.path (`python -m pytest` from the checkout); the console
 scripts of an editable install reach it through `simiam.course.folders.instructor_tool`.
