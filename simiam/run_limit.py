@@ -41,6 +41,18 @@ def step_limit(seconds: float) -> Iterator[None]:
         signal.signal(signal.SIGALRM, previous)
 
 
+class LimitedBrain:
+    """A Brain whose every step runs under `step_limit(seconds)`: the student's code, not the physics."""
+
+    def __init__(self, brain, seconds: float) -> None:
+        self.brain = brain
+        self.seconds = seconds
+
+    def step(self, readings: dict) -> dict:
+        with step_limit(self.seconds):
+            return self.brain.step(readings)
+
+
 def stuck_at(exc: BaseException, folder: Path) -> str | None:
     """`file.py:line in Class.method` of the innermost frame of the traceback inside `folder`, or None."""
     folder = Path(folder).resolve()

@@ -94,6 +94,11 @@ SIGNALS: dict[str, Signal] = {s.name: s for s in (
 WEEKS_1_TO_4: tuple[str, ...] = ("theta_g", "u_ao", "ir_points_wf", "v", "w")
 
 
+def week_signals(week: Any) -> tuple[str, ...]:
+    """The signal names a week declares (its `signals`), else weeks 1-4's."""
+    return tuple(getattr(week, "signals", WEEKS_1_TO_4))
+
+
 def declared(names: Iterable[str]) -> tuple[Signal, ...]:
     """The Signals called `names`, in order; a name nobody declared is a ValueError naming it (a typo in
     a week's declaration must not silently plot nothing)."""

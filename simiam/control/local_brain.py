@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 from simiam.control.pose import Pose2D
 from simiam.control.robot_view import RobotView
-from simiam.signals import WEEKS_1_TO_4, declared, read_signals
+from simiam.signals import declared, read_signals, week_signals
 from simiam.signals import plain as _plain
 
 if TYPE_CHECKING:
@@ -35,7 +35,7 @@ class LocalBrain:
     def __init__(self, submission, week: Week, settings: dict | None = None,
                  start: tuple[float, float, float] | None = None) -> None:
         self.week = week
-        self.signals = declared(getattr(week, "signals", WEEKS_1_TO_4))
+        self.signals = declared(week_signals(week))
         self._n_ir = len(week.spec.ir_mounts)
         self.robot = RobotView(week.spec, submission)
         supervisor_class = submission.module("qb_supervisor").QBSupervisor

@@ -25,7 +25,10 @@ SETTINGS = {"goal": [0.5, 0.5], "v": 0.15}
 def _run(brain, week: int = 3, seconds: float = 2.0) -> dict:
     cfg = get_week(week)
     sim = Simulator(load_world(cfg.world), brain, spec_for_week(week), dt=cfg.dt, start=cfg.start)
-    return sim.run(seconds=seconds).to_json()["steps"]
+    trace = sim.run(seconds=seconds)
+    if trace.ending.broken:  # the run ended at the brain's error, which the tests below look at
+        raise trace.ending.error
+    return trace.to_json()["steps"]
 
 
 def test_remote_and_local_brains_give_the_same_trace(shared_dir, one_mode):
