@@ -239,7 +239,8 @@ def _read_count(x: Any, _n: int) -> int | None:
 
 
 def _read_flag(x: Any, _n: int) -> bool | None:
-    if isinstance(x, bool) or type(x).__name__ == "bool_":  # numpy's bool_ too
+    t = type(x)
+    if t is bool or (t.__module__ == "numpy" and t.__name__ in ("bool", "bool_")):  # numpy's bool too
         return bool(x)
     return None
 
