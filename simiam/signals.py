@@ -29,13 +29,16 @@ KINDS: tuple[str, ...] = ("scalar", "vector2", "points", "label", "count", "flag
 LABEL_CHARS = 80        # a label signal (as a state name: simiam.brain caps those at the same length)
 MAX_POINTS = 64         # columns of a points signal (a QuickBot has 5 IR sensors)
 MAX_COUNT = 10**9       # a count signal (switches in a run: far fewer)
+MAX_SIGNALS = 64        # signals one trace declares
+NAME_CHARS = 40         # a signal's name (a column of the trace and the CSV)
 
 
 @dataclass(frozen=True)
 class Signal:
     """One debug signal: `name`, `kind`, and where the brain reads it: `owner` ("supervisor" or
     "controller", the current one), its attribute `attr`, then `[index]` if not None. `size` is the
-    number of columns of a points signal (None: one per IR sensor)."""
+    number of columns of a points signal (None: one per IR sensor). `unit` labels plots; a scalar in
+    "rad" is a heading, which the replay draws as a direction from the robot."""
 
     name: str
     kind: Kind
@@ -44,10 +47,13 @@ class Signal:
     index: int | str | None = None
     size: int | None = None
     doc: str = ""
+    unit: str = ""
 
     def header(self, n_ir: int) -> dict:
         """What a trace's header says of this signal (a trace is read without this registry)."""
         out: dict = {"name": self.name, "kind": self.kind}
+        if self.unit:
+            out["unit"] = self.unit
         if self.kind == "points":
             out["size"] = self.columns(n_ir)
         return out
@@ -57,21 +63,22 @@ class Signal:
         return self.size if self.size is not None else n_ir
 
 
-def _c(name: str, kind: Kind, attr: str | None = None, doc: str = "") -> Signal:
-    return Signal(name, kind, "controller", attr or name, doc=doc)
+def _c(name: str, kind: Kind, attr: str | None = None, doc: str = "", unit: str = "") -> Signal:
+    return Signal(name, kind, "controller", attr or name, doc=doc, unit=unit)
 
 
-def _s(name: str, kind: Kind, attr: str | None = None, index: int | str | None = None, doc: str = ""
-       ) -> Signal:
-    return Signal(name, kind, "supervisor", attr or name, index, doc=doc)
+def _s(name: str, kind: Kind, attr: str | None = None, index: int | str | None = None, doc: str = "",
+       unit: str = "") -> Signal:
+    return Signal(name, kind, "supervisor", attr or name, index, doc=doc, unit=unit)
 
 
 # Every signal any week may record. Weeks 5-7 names follow the original sp14 controllers (§5.2-5.3 of
 # ../shared/reference/original-simulator.md); their owners add the attributes these read.
 SIGNALS: dict[str, Signal] = {s.name: s for s in (
-    _s("v", "scalar", "outputs", 0, "the v the running controller returned, before ensure_w"),
-    _s("w", "scalar", "outputs", 1, "the w the running controller returned, before ensure_w"),
-    _c("theta_g", "scalar", doc="the heading the controller steers to (GoToGoal's theta_g, AO's theta_ao)"),
+    _s("v", "scalar", "outputs", 0, "the v the running controller returned, before ensure_w", "m/s"),
+    _s("w", "scalar", "outputs", 1, "the w the running controller returned, before ensure_w", "rad/s"),
+    _c("theta_g", "scalar", doc="the heading the controller steers to (GoToGoal's theta_g, AO's theta_ao)",
+       unit="rad"),
     _c("u_ao", "vector2", doc="avoid-obstacles vector, world frame"),
     _c("ir_points_wf", "points", "ir_distances_wf", "the IR points in the world frame (x row, y row)"),
     _c("u_gtg", "vector2", doc="go-to-goal vector, world frame"),
@@ -83,7 +90,7 @@ SIGNALS: dict[str, Signal] = {s.name: s for s in (
     _c("u_fw", "vector2", doc="follow-wall: the vector followed"),
     _s("sigma", "vector2", doc="sliding mode: [u_gtg u_ao] sigma = u_fw"),
     _s("fw_direction", "label", doc="follow-wall direction, 'left' or 'right'"),
-    _s("d_prog", "scalar", doc="progress point: the closest the estimate has been to the goal"),
+    _s("d_prog", "scalar", doc="progress point: the closest the estimate has been to the goal", unit="m"),
     _s("switches", "count", "switch_count", doc="how many times the supervisor switched state"),
     *(_s(event, "flag", "event_values", event, doc=f"the event {event} at this step")
       for event in ("at_goal", "at_obstacle", "unsafe", "obstacle_cleared", "progress_made",
@@ -275,14 +282,18 @@ def headers(signals: tuple[Signal, ...], n_ir: int) -> list[dict]:
 def from_headers(items: Any) -> list[dict]:
     """A trace header's signal declarations, checked: a list of {"name", "kind"[, "size"]}; raises
     ValueError otherwise (a trace file is read by the viewer and the report without this registry)."""
-    if not isinstance(items, list):
-        raise ValueError("the trace's 'signals' must be a list")
+    if not isinstance(items, list) or len(items) > MAX_SIGNALS:
+        raise ValueError(f"the trace's 'signals' must be a list of at most {MAX_SIGNALS}")
     out = []
     for item in items:
         if not (isinstance(item, Mapping) and isinstance(item.get("name"), str)
+                and item["name"].isidentifier() and len(item["name"]) <= NAME_CHARS
                 and item.get("kind") in KINDS):
-            raise ValueError(f"a signal declaration needs a name and one of the kinds {', '.join(KINDS)}")
+            raise ValueError(f"a signal declaration needs a name (a Python identifier of at most "
+                             f"{NAME_CHARS} characters) and one of the kinds {', '.join(KINDS)}")
         entry = {"name": item["name"], "kind": item["kind"]}
+        if isinstance(item.get("unit"), str) and item["unit"]:
+            entry["unit"] = item["unit"][:20]
         if item["kind"] == "points":
             size = item.get("size")
             if not (type(size) is int and 0 < size <= MAX_POINTS):
