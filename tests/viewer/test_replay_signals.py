@@ -5,50 +5,31 @@ simulator with a week-5-like set of signals, and each wrong page in tests/data/v
 
 from __future__ import annotations
 
+import importlib.util
 import json
-import math
 from pathlib import Path
 
 import pytest
 
-from simiam.robot.quickbot import spec_for_week
-from simiam.simulator import Simulator
 from simiam.viewer import replay
 from simiam.viewer.replay import pack_trace, render_replay, write_replay
-from simiam.world import load_world
 
 pytestmark = pytest.mark.browser
-MUTATIONS = json.loads((Path(__file__).resolve().parents[1] / "data/viewer_wrong/mutations.json").read_text())
-SIGNALS = ("theta_g", "u_gtg", "u_ao", "fw_direction", "switches", "at_goal", "d_prog")
-
-
-class Switching:
-    """A trusted brain that drives a slow arc and reports week-5-like signals: go_to_goal for 1 s, then
-    follow_wall, then stop; u_gtg points at (1, 1), u_ao away from it."""
-
-    def __init__(self):
-        self.state, self.switches = "go_to_goal", 0
-
-    def step(self, readings):
-        t = readings["t"]
-        state = "go_to_goal" if t < 1.0 else "follow_wall" if t < 2.0 else "stop"
-        if state != self.state:
-            self.state, self.switches = state, self.switches + 1
-        return {"vel_r": 3.0, "vel_l": 2.0, "estimate": None, "state": state,
-                "debug": {"theta_g": math.pi / 4, "u_gtg": [0.3, 0.3], "u_ao": [-0.2, 0.1],
-                          "fw_direction": "left" if state == "follow_wall" else None,
-                          "switches": self.switches, "at_goal": state == "stop", "d_prog": 3.0 - t}}
+DATA = Path(__file__).resolve().parents[1] / "data"
+MUTATIONS = json.loads((DATA / "viewer_wrong/mutations.json").read_text())
+_spec = importlib.util.spec_from_file_location("simiam_test_switching", DATA / "traces/switching.py")
+SWITCHING = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(SWITCHING)
 
 
 @pytest.fixture(scope="module")
 def week5_like():
-    sim = Simulator(load_world("week3"), Switching(), spec_for_week(4), dt=0.05, signals=SIGNALS)
-    return sim.run(seconds=3.0).to_json()
+    return SWITCHING.switching_trace()
 
 
 def test_the_packed_page_carries_every_declared_signal(week5_like):
     packed = pack_trace(week5_like)
-    assert [s["name"] for s in packed["signals"]] == list(SIGNALS)
+    assert [s["name"] for s in packed["signals"]] == list(SWITCHING.SIGNALS)
     assert packed["signal_data"]["fw_direction"][:2] == [[0, ""], [20, "left"]]
     assert packed["signal_data"]["at_goal"][40:42] == [1, 1] and packed["signal_data"]["switches"][-1] == 2
     assert packed["ending"] == {"reason": "time_up", "t": 3.0, "message": ""}
