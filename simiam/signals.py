@@ -102,8 +102,8 @@ WEEKS_1_TO_4: tuple[str, ...] = ("theta_g", "u_ao", "ir_points_wf", "v", "w")
 
 
 def week_signals(week: Any) -> tuple[str, ...]:
-    """The signal names a week declares (its `signals`), else weeks 1-4's."""
-    return tuple(getattr(week, "signals", WEEKS_1_TO_4))
+    """The signal names a week declares (its `debug_signals`), else weeks 1-4's."""
+    return tuple(getattr(week, "debug_signals", None) or WEEKS_1_TO_4)
 
 
 def declared(names: Iterable[str]) -> tuple[Signal, ...]:

@@ -198,3 +198,12 @@ def test_every_registered_signal_has_a_known_kind_and_owner():
     for s in SIGNALS.values():
         assert s.kind in ("scalar", "vector2", "points", "label", "count", "flag") and s.doc
         assert s.owner in ("supervisor", "controller") and s.name.isidentifier()
+
+
+def test_a_week_that_declares_an_unknown_signal_is_refused():
+    from dataclasses import replace
+
+    from simiam.course.weeks import week_config
+
+    with pytest.raises(ValueError, match="week 4: no debug signal is declared with the name 'u_aoo'"):
+        replace(week_config(4), debug_signals=("v", "u_aoo"))
