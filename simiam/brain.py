@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import Any, Protocol, TypedDict
 
 from simiam.robot.quickbot import IR_MOUNTS
-from simiam.signals import WEEKS_1_TO_4, Signal, clean_debug, declared, real
+from simiam.signals import WEEKS_1_TO_4, Plan, Signal, clean_debug, declared, real
 
 STATE_CHARS = 80  # a state name (a student picks it; it is shown in the replay, the report and the terminal)
 
@@ -62,14 +62,15 @@ class ConstantBrain:
 _DEFAULT = declared(WEEKS_1_TO_4)
 
 
-def validate_command(command: Any, signals: tuple[Signal, ...] = _DEFAULT, n_ir: int = len(IR_MOUNTS)
-                     ) -> Command:
+def validate_command(command: Any, signals: tuple[Signal, ...] = _DEFAULT, n_ir: int = len(IR_MOUNTS),
+                     plan: Plan | None = None) -> Command:
     """Check and normalise a brain's command; raises BrainError with a readable message.
 
     vel_r / vel_l must be finite real numbers (bool is rejected); estimate is None or three finite numbers;
     state a string (or None), cut to STATE_CHARS. Debug values go through simiam.signals.clean_debug:
     every declared signal is present, a missing or malformed one is None, unknown names are dropped.
-    `n_ir` (the robot's IR sensor count) sizes the points signals; the defaults are weeks 1-4's.
+    `n_ir` (the robot's IR sensor count) sizes the points signals; the defaults are weeks 1-4's. The
+    simulator passes `plan` (simiam.signals.debug_plan) worked out once per run.
     """
     if not isinstance(command, dict):
         raise BrainError(f"the command must be a dict, got {type(command).__name__}")
@@ -89,5 +90,5 @@ def validate_command(command: Any, signals: tuple[Signal, ...] = _DEFAULT, n_ir:
     if state is not None and not isinstance(state, str):
         raise BrainError(f"state must be a string, got {type(state).__name__}")
     out["state"] = None if state is None else state[:STATE_CHARS]
-    out["debug"] = clean_debug(command.get("debug"), signals, n_ir)
+    out["debug"] = clean_debug(command.get("debug"), signals, n_ir, plan)
     return out  # type: ignore[return-value]

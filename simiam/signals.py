@@ -183,13 +183,23 @@ _CLEAN: dict[str, Callable[[Any, int], Any]] = {"scalar": _scalar, "vector2": _v
                                                 "label": _label, "count": _count, "flag": _flag}
 
 
-def clean_debug(debug: Any, signals: tuple[Signal, ...], n_ir: int) -> dict[str, Any]:
+Plan = tuple[tuple[str, Callable[[Any, int], Any], int], ...]
+
+
+def debug_plan(signals: tuple[Signal, ...], n_ir: int) -> Plan:
+    """(name, rule, columns) per signal: what `clean_debug` does, worked out once per run."""
+    return tuple((s.name, _CLEAN[s.kind], s.columns(n_ir)) for s in signals)
+
+
+def clean_debug(debug: Any, signals: tuple[Signal, ...], n_ir: int, plan: Plan | None = None
+                ) -> dict[str, Any]:
     """The debug values of one command: every declared signal, each a value of its kind or None. Names
-    not declared are dropped; `debug` that is not a dict gives all None. `n_ir` sizes points signals."""
+    not declared are dropped; `debug` that is not a dict gives all None. `n_ir` sizes points signals;
+    `plan` (from `debug_plan(signals, n_ir)`) saves working that out every step."""
     if not isinstance(debug, dict):
         debug = {}
     get = debug.get
-    return {s.name: _CLEAN[s.kind](get(s.name), s.columns(n_ir)) for s in signals}
+    return {name: rule(get(name), n) for name, rule, n in (plan or debug_plan(signals, n_ir))}
 
 
 # --- the robot's side: read the student's objects into plain values ----------------------------------------

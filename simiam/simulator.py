@@ -25,7 +25,7 @@ from simiam.robot.dynamics import move
 from simiam.robot.ir_sensor import distance_to_raw, mounted_cone
 from simiam.robot.quickbot import RobotSpec, limit_speeds
 from simiam.robot.wheel_encoder import WheelEncoder
-from simiam.signals import WEEKS_1_TO_4, declared, headers
+from simiam.signals import WEEKS_1_TO_4, debug_plan, declared, headers
 from simiam.trace import Ending, EndReason, Trace
 from simiam.world.world import World
 
@@ -68,6 +68,7 @@ class Simulator:
             raise ValueError(f"dt must be a positive number of seconds, got {dt!r}")
         self.signals = declared(signals)
         self._n_ir = len(spec.ir_mounts)
+        self._plan = debug_plan(self.signals, self._n_ir)
         self._brain_exception: BaseException | None = None  # what the brain itself raised, for run()
         self.world = world
         self.brain = brain
@@ -213,7 +214,7 @@ class Simulator:
         except BaseException as exc:
             self._brain_exception = exc  # run() ends on this one; anything else raised in a step is a bug
             raise
-        command = validate_command(answer, self.signals, self._n_ir)
+        command = validate_command(answer, self.signals, self._n_ir, self._plan)
         self._vel_r, self._vel_l = limit_speeds(command["vel_r"], command["vel_l"],
                                                 self.spec.max_vel, self.spec.min_vel)
         return command
@@ -304,9 +305,11 @@ def run_steps(sims: Sequence[Simulator], step: Callable[[], list[StepRecord]], s
         except BaseException as exc:
             ending = _broken(sims, exc, stuck)
             break
+        hit = False
         for trace, rec in zip(traces, records, strict=True):
             add_row(trace, rec)
-        if stop_on_collision and any(rec.collided for rec in records):
+            hit = hit or rec.collided
+        if hit and stop_on_collision:
             ending = Ending(EndReason.COLLISION, lead.steps_taken, lead.t)
             break
         if until is not None and until(records):
