@@ -52,7 +52,7 @@ class RobotView:
         self.vel_l = 0.0
 
     def update(self, readings: dict) -> None:
-        """Take one step's readings: {"ticks": [right, left], "ir_raw": [5 ints], ...}."""
+        """Take one step's readings: {"ticks": [right, left], "ir_raw": [one int per IR sensor], ...}."""
         self.encoders[0].ticks, self.encoders[1].ticks = readings["ticks"]
         for sensor, raw in zip(self.ir_array, readings["ir_raw"], strict=True):
             sensor._raw = raw
