@@ -99,3 +99,16 @@ def test_checks_catch_wrong_pages(open_page, week5_like, tmp_path, monkeypatch, 
     page, _ = open_page(path)
     page.evaluate("window.simiam.seek(1.5)")
     assert not check(page)
+
+
+def test_a_week4_trace_written_before_signals_were_declared(open_page, tmp_path):
+    synthetic = importlib.util.spec_from_file_location("simiam_test_synth_s", DATA / "traces/synthetic.py")
+    mod = importlib.util.module_from_spec(synthetic)
+    synthetic.loader.exec_module(mod)
+    trace = mod.load("week4_wander.json")
+    assert "signals" not in trace
+    page, errors = open_page(write_replay(trace, tmp_path / "week4.html"))
+    assert [(o["name"], o["on"]) for o in page.evaluate("window.simiam.overlays()")] == [
+        ("u_ao", True), ("ir_points_wf", True)]  # its theta_g column is all null: nothing to draw
+    assert page.locator(".plot h2").first.inner_text().startswith("States")
+    assert errors == []

@@ -399,7 +399,8 @@
       if (g.kind === "label") { rows.push({ label: g.name, runs: SD[g.name] }); }
       if (g.kind === "flag") { rows.push({ label: g.name, flag: SD[g.name] }); }
     });
-    if (D.states.length > 1 || rows.length > 1) { plots.push(Timeline("States and events", rows)); }
+    var named = D.states.some(function (run) { return run[1] !== ""; });
+    if (named || rows.length > 1) { plots.push(Timeline(rows.length > 1 ? "States and events" : "States", rows)); }
     var thetaEst = S.theta_est.map(wrap);
     var hs = [{ label: "θ (estimate)", ys: thetaEst, color: COLORS.series[0], breakOnWrap: true, width: 1.6 }];
     var headings = [];
