@@ -66,6 +66,7 @@ class LocalBrain:
         self.robot.update(readings)
         sup = self.supervisor
         sup.outputs = None
+        sup.event_values = {}
         sup.execute(readings["dt"])
         return {
             "vel_r": _plain(self.robot.vel_r),

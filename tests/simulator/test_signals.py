@@ -207,3 +207,19 @@ def test_a_week_that_declares_an_unknown_signal_is_refused():
 
     with pytest.raises(ValueError, match="week 4: no debug signal is declared with the name 'u_aoo'"):
         replace(week_config(4), debug_signals=("v", "u_aoo"))
+
+
+def test_events_are_recorded_as_check_event_gave_them_in_this_step():
+    from pathlib import Path
+
+    from simiam.control.local_brain import LocalBrain
+    from simiam.course.loader import load_submission
+    from simiam.course.weeks import week_config
+
+    week = week_config(3)
+    sub = load_submission(Path(__file__).parents[2] / "solutions/week3", week)
+    brain = LocalBrain(sub, week, {"goal": [0.0, 0.0]})  # at the goal from the start: at_goal is checked
+    brain.supervisor.event_values = {"unsafe": True}      # a stale value from an earlier step
+    brain.step({"t": 0.033, "dt": 0.033, "ticks": [0, 0], "ir_raw": [200] * 5})
+    assert read_signals(brain.supervisor, declared(("at_goal", "unsafe")), 5) == {"at_goal": True,
+                                                                                 "unsafe": None}
