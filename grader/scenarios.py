@@ -88,6 +88,7 @@ def run(
     trace.meta = {"check_label": label, "seed": ctx.seed}
     result.trace = trace
     ending = trace.ending
+    assert ending is not None  # run() always says how it ended
     if ending.reason is EndReason.UNTIL:
         result.reached, result.t_goal = True, ending.t
     elif ending.reason is EndReason.INVALID_COMMAND:

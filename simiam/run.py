@@ -138,6 +138,7 @@ def _run(args: argparse.Namespace, week: Week, folder: Path, run_folder: Path, w
     trace = sim.run(seconds, stuck=(StepTimeout,))
     trace.goal = goal or trace.goal
     trace.meta = {"submission": str(folder), "source": "simiam run"}
+    assert trace.ending is not None  # run() always says how it ended
     error = _ending_words(trace.ending, folder, run_folder)
 
     out = Path(args.out)

@@ -14,6 +14,9 @@ import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
+
+from simiam.brain import Brain, Readings
 
 
 class StepTimeout(BaseException):
@@ -44,11 +47,11 @@ def step_limit(seconds: float) -> Iterator[None]:
 class LimitedBrain:
     """A Brain whose every step runs under `step_limit(seconds)`: the student's code, not the physics."""
 
-    def __init__(self, brain, seconds: float) -> None:
+    def __init__(self, brain: Brain, seconds: float) -> None:
         self.brain = brain
         self.seconds = seconds
 
-    def step(self, readings: dict) -> dict:
+    def step(self, readings: Readings) -> Any:
         with step_limit(self.seconds):
             return self.brain.step(readings)
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 from simiam.brain import Brain, BrainError, Command, ConstantBrain, Readings, validate_command
 from simiam.physics.collision import plate_collides
@@ -343,7 +344,7 @@ def _broken(sims: Sequence[Simulator], exc: BaseException, stuck: tuple[type[Bas
 def add_row(trace: Trace, rec: StepRecord, estimate: Pose | None = None) -> None:
     """Append one StepRecord to the trace's columns (the estimate and debug values come from its command)."""
     s = trace.steps
-    cmd = rec.command or {}
+    cmd: Any = rec.command or {}
     est = cmd.get("estimate") or estimate
     debug = cmd.get("debug") or {}
     s["t"].append(rec.t)

@@ -129,8 +129,8 @@ class Trace:
             data = json.loads(data)
         if not isinstance(data, dict) or data.get("format") != FORMAT:
             raise ValueError(f"not a {FORMAT} trace")
-        signals = data.get("signals", WEEKS_1_TO_4_SIGNALS)
-        columns = HEAD + tuple(s.get("name") for s in signals if isinstance(s, dict)) + TAIL
+        signals = from_headers(data.get("signals", WEEKS_1_TO_4_SIGNALS))
+        columns = HEAD + tuple(s["name"] for s in signals) + TAIL
         steps = data["steps"]
         missing = [c for c in columns if c not in steps]
         if missing:

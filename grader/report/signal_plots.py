@@ -54,8 +54,8 @@ def signals_svg(trace: dict, names: Sequence[str], title: str | None = None) -> 
     units = []
     for name in names:
         sig = found.get(name)
-        values = steps.get(name) if sig else None
-        if not isinstance(values, list) or not any(v is not None for v in values):
+        values = steps.get(name)
+        if sig is None or not isinstance(values, list) or not any(v is not None for v in values):
             continue
         colour = _SERIES[len(series) % len(_SERIES)]
         if sig["kind"] in ("scalar", "count"):

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -316,7 +317,7 @@ class RemoteBrain:
         self.step_timeout = step_timeout
         self._started = False
 
-    def step(self, readings: dict) -> Any:
+    def step(self, readings: Mapping[str, Any]) -> Any:
         if not self._started:
             self.session.call("brain_start", settings=self.settings)
             self._started = True

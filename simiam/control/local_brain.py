@@ -5,7 +5,8 @@ Implements the simulator's Brain seam: `step(readings) -> command` with plain va
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
 
 from simiam.control.pose import Pose2D
 from simiam.control.robot_view import RobotView
@@ -60,7 +61,7 @@ class LocalBrain:
         if settings.get("state"):
             sup.switch_to_state(settings["state"])
 
-    def step(self, readings: dict) -> dict:
+    def step(self, readings: Mapping[str, Any]) -> dict[str, Any]:
         """Feed one step's readings to the robot, run the supervisor once, return the command
         (simiam.brain's Readings and Command; not imported here, the worker has no simiam.brain)."""
         self.robot.update(readings)
