@@ -175,11 +175,10 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
                hrefs: dict[str, str], shown: set[str], max_rows: int = REPLAY_ROWS) -> list[dict]:
     """The runs of one check; `shown` holds the trace keys an earlier check already shows (their replay
     is linked, not embedded again, and each section id stays unique in the page). Each run gets the
-    trajectory, the heading plot when a goal or θ_d is known, and the plots the check declares in
-    `details["plots"]` (grader.report.signal_plots)."""
+    plots the check declares (its `plots`: trajectory, heading, angle; states and signals by
+    grader.report.signal_plots)."""
     from simiam.viewer.replay import TraceFormatError, render_replay
 
-    details = d if isinstance(d := check.get("details"), dict) else {}
     views = []
     keys = _trace_keys(check, traces)
     if not keys:  # a check that measured a run another check kept (same goal): plot it, link the replay
@@ -204,7 +203,7 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
             views.append(view)
             continue
         goal = trace.get("goal") or metrics.get("goal")
-        view["plots"] = declared_plots(details, trace)
+        view["plots"] = declared_plots(check.get("plots"), trace)
         given = metrics.get("theta_d")
         theta_d = float(given) if isinstance(given, (int, float)) and math.isfinite(given) else None
         plots = _plots(check, goal, theta_d is not None)
@@ -233,8 +232,7 @@ def _check_view(check: dict, traces: dict, replays: str, hrefs: dict[str, str], 
                 max_rows: int = REPLAY_ROWS) -> dict:
     details = d if isinstance(d := check.get("details"), dict) else {}
     runs = _runs(details)
-    listed = {"runs", "counterexample", "replay", "traces", "stdout", "stderr", "case", "plots"}
-    listed |= set(METRICS)
+    listed = {"runs", "counterexample", "replay", "traces", "stdout", "stderr", "case"} | set(METRICS)
     extra = {k: v for k, v in details.items() if k not in listed}
     status = str(check.get("status", ""))
     views = _run_views(check, traces, runs, replays, hrefs, shown, max_rows)

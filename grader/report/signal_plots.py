@@ -2,10 +2,10 @@
 own `signals` header, knowing no signal in advance (simiam.signals declares them; a trace says which it
 recorded and of what kind).
 
-A check asks for them in its result's `details["plots"]`, a list whose entries are
+A check asks for them in `Check.plots` (carried in its result's `plots`):
 - `"states"`: which controller ran when (a band per state run), with a row per label and event signal;
-- `{"signals": ["d_prog", "switches"], "title": "..."}`: those signals over time (numbers and counts as
-  lines, an event as 0/1, a vector as its x and y).
+- `"signals:d_prog,switches"`: those signals over time (numbers and counts as lines, an event as 0/1, a
+  vector as its x and y).
 Every label in these pictures is escaped; state names are the student's and are shown, never obeyed.
 """
 
@@ -155,10 +155,10 @@ def states_svg(trace: dict, width: int = 460) -> Markup | None:
     return Markup("".join(out))
 
 
-def declared_plots(details: dict, trace: dict) -> list[Markup]:
-    """The extra plots a check asked for in `details["plots"]` (see the module docstring), drawn from
-    `trace`; an entry the report does not know, or a signal the trace lacks, draws nothing."""
-    wanted = details.get("plots")
+def declared_plots(wanted: object, trace: dict) -> list[Markup]:
+    """The plots of the declared signals and states that a check asked for (its result's `plots`, from
+    Check.plots), drawn from `trace`: "states", and "signals:NAME,NAME" for those signals. An entry the
+    report does not know, or a signal the trace lacks, draws nothing."""
     if not isinstance(wanted, list):
         return []
     out = []
@@ -166,10 +166,8 @@ def declared_plots(details: dict, trace: dict) -> list[Markup]:
         picture = None
         if entry == "states":
             picture = states_svg(trace)
-        elif isinstance(entry, dict) and isinstance(entry.get("signals"), list):
-            names = [s for s in entry["signals"][:12] if isinstance(s, str)]
-            title = entry.get("title") if isinstance(entry.get("title"), str) else None
-            picture = signals_svg(trace, names, title)
+        elif isinstance(entry, str) and entry.startswith("signals:"):
+            picture = signals_svg(trace, [n for n in entry[len("signals:"):].split(",") if n][:12])
         if picture is not None:
             out.append(picture)
     return out

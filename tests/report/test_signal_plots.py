@@ -1,6 +1,6 @@
 """The report's plots of declared signals and states (grader/report/signal_plots.py): drawn by name from
 the trace's own header, none known in advance; student state names escaped; a check asks for them in
-details["plots"]."""
+`Check.plots`."""
 
 from __future__ import annotations
 
@@ -76,13 +76,19 @@ def test_a_timeline_that_pastes_names_is_caught():
 
 
 def test_a_check_declares_the_plots_of_its_runs(trace):
-    plots = ["states", {"signals": ["d_prog"], "title": "progress"}, "no_such_plot", {"signals": ["nothing"]}]
-    details = {"traces": ["week5.switching"], "plots": plots}
-    assert len(declared_plots(details, trace)) == 2
+    plots = ["trajectory", "states", "signals:d_prog", "no_such_plot", "signals:nothing"]
+    assert len(declared_plots(plots, trace)) == 2
     result = {"week": 5, "score": 1.0, "max_score": 1.0, "status": "graded", "submission": "alice",
               "checks": [{"id": "week5.switching", "name": "switching", "kind": "scenario",
                           "status": "passed", "points": 1.0, "max_points": 1.0, "message": "",
-                          "details": details}]}
+                          "plots": plots, "details": {"traces": ["week5.switching"]}}]}
     html = render_report(result, {"week5.switching": trace}, replays="none")
-    assert "Which controller ran when" in html and "progress (m)" in html
-    assert "no_such_plot" not in html  # the declaration is not dumped as an unknown detail
+    assert "Which controller ran when" in html and "d_prog (m)" in html and "trajectory" in html
+
+
+def test_checks_may_declare_state_and_signal_plots_and_nothing_else():
+    from grader.checks import Check
+
+    Check("week5.x", "x", "scenario", 1.0, lambda ctx: None, plots=("trajectory", "states", "signals:d_prog"))
+    with pytest.raises(ValueError, match="unknown plots"):
+        Check("week5.x", "x", "scenario", 1.0, lambda ctx: None, plots=("state",))
