@@ -203,10 +203,10 @@ def test_every_registered_signal_has_a_known_kind_and_owner():
 def test_a_week_that_declares_an_unknown_signal_is_refused():
     from dataclasses import replace
 
-    from simiam.course.weeks import week_config
+    from simiam.course.weeks import get_week
 
     with pytest.raises(ValueError, match="week 4: no debug signal is declared with the name 'u_aoo'"):
-        replace(week_config(4), debug_signals=("v", "u_aoo"))
+        replace(get_week(4), debug_signals=("v", "u_aoo"))
 
 
 def test_events_are_recorded_as_check_event_gave_them_in_this_step():
@@ -214,9 +214,9 @@ def test_events_are_recorded_as_check_event_gave_them_in_this_step():
 
     from simiam.control.local_brain import LocalBrain
     from simiam.course.loader import load_submission
-    from simiam.course.weeks import week_config
+    from simiam.course.weeks import get_week
 
-    week = week_config(3)
+    week = get_week(3)
     sub = load_submission(Path(__file__).parents[2] / "solutions/week3", week)
     brain = LocalBrain(sub, week, {"goal": [0.0, 0.0]})  # at the goal from the start: at_goal is checked
     brain.supervisor.event_values = {"unsafe": True}      # a stale value from an earlier step
