@@ -133,7 +133,7 @@ def _run(args: argparse.Namespace, week: Week, folder: Path, run_folder: Path, w
         return _fail(_student_error(exc, run_folder, "while setting up the supervisor"), 1)
 
     sup = brain.supervisor
-    driving = sup.current_state in ("go_to_goal", "ao_and_gtg")  # the states that drive to the goal (weeks 3, 5)
+    driving = sup.current_state in ("go_to_goal", "ao_and_gtg")  # states that drive to the goal (weeks 3, 5)
     goal = [float(sup.goal[0]), float(sup.goal[1])] if driving else None
     trace = sim.run(seconds, stuck=(StepTimeout,))
     trace.goal = goal or trace.goal
