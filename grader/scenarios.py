@@ -16,9 +16,10 @@ from typing import Any
 from grader import clearance
 from grader import reference as ref
 from grader.checks import Context
-from grader.sandbox.errors import SandboxError
-from simiam.simulator import BrainError, Simulator, add_row
-from simiam.trace import Trace
+from grader.sandbox.errors import SandboxError, StudentTimeout
+from simiam.signals import week_signals
+from simiam.simulator import Simulator, StepRecord
+from simiam.trace import EndReason, Trace
 from simiam.world import World, load_world
 
 
@@ -75,30 +76,27 @@ def run(
     )
     try:
         brain = _brain(ctx, settings, session)
-        sim = Simulator(sim_goal, brain, ctx.spec, dt=config.dt, start=start)
+        sim = Simulator(sim_goal, brain, ctx.spec, dt=config.dt, start=start, signals=week_signals(config))
     except SandboxError as exc:
         result.problem, result.sandbox_error = _words(exc, 0.0), exc
         return result
-    trace = sim.new_trace()
+    until = None
+    if goal is not None and goal_radius is not None:
+        def until(rec: StepRecord) -> bool:  # the TRUE position, never the student's estimate
+            return math.dist(rec.pose[:2], goal) < goal_radius
+    trace = sim.run(seconds, until=until, stuck=(StudentTimeout,))
     trace.meta = {"check_label": label, "seed": ctx.seed}
-    add_row(trace, sim.last, start)
     result.trace = trace
-    for _ in range(int(round(seconds / sim.dt))):
-        try:
-            rec = sim.step()
-        except BrainError as exc:
-            result.problem = f"at t = {sim.t:.2f} s your supervisor gave an invalid command: {exc}"
-            break
-        except SandboxError as exc:
-            result.problem, result.sandbox_error = _words(exc, sim.t), exc
-            break
-        add_row(trace, rec)
-        if rec.collided:
-            break
-        if goal is not None and goal_radius is not None and math.dist(rec.pose[:2], goal) < goal_radius:
-            result.reached, result.t_goal = True, rec.t
-            break
-    trace.collision = sim.first_collision
+    ending = trace.ending
+    assert ending is not None  # run() always says how it ended
+    if ending.reason is EndReason.UNTIL:
+        result.reached, result.t_goal = True, ending.t
+    elif ending.reason is EndReason.INVALID_COMMAND:
+        result.problem = f"at t = {ending.t:.2f} s your supervisor gave an invalid command: {ending.message}"
+    elif ending.broken and isinstance(ending.error, SandboxError):
+        result.problem, result.sandbox_error = _words(ending.error, ending.t), ending.error
+    elif ending.broken:  # RemoteBrain raises only the session's errors: anything else is the grader's bug
+        raise ending.error or RuntimeError(ending.message)
     x, y, _ = result.final_pose
     result.metrics = {
         "seconds": trace.seconds,

@@ -23,9 +23,10 @@ from simiam.course.folders import WeekFolderNotFound, week_folder
 from simiam.course.loader import load_submission, locate_in_folder
 from simiam.course.week import Week
 from simiam.course.weeks import get_week
-from simiam.run_limit import StepTimeout, step_limit, stuck_at
-from simiam.simulator import BrainError, Simulator, add_row
-from simiam.trace import Trace
+from simiam.run_limit import LimitedBrain, StepTimeout, step_limit, stuck_at
+from simiam.signals import week_signals
+from simiam.simulator import Simulator
+from simiam.trace import Ending, EndReason, Trace
 from simiam.world import WorldFileError, load_world
 
 MAX_STEPS = 1_000_000  # 9 simulated hours at 0.033 s; a trace of that size is already ~1 GB in memory
@@ -122,7 +123,8 @@ def _run(args: argparse.Namespace, week: Week, folder: Path, run_folder: Path, w
     try:
         with step_limit(STEP_SECONDS):
             brain = LocalBrain(sub, week, start=start)
-            sim = Simulator(world, brain, week.spec, dt=args.dt, start=start)
+        sim = Simulator(world, LimitedBrain(brain, STEP_SECONDS), week.spec, dt=args.dt, start=start,
+                        signals=week_signals(week))
     except StepTimeout as exc:
         return _fail(_stuck(exc, run_folder, "while setting up the supervisor"), 1)
     except BaseException as exc:  # noqa: BLE001 - the student's __init__ may raise anything, sys.exit too
@@ -130,32 +132,14 @@ def _run(args: argparse.Namespace, week: Week, folder: Path, run_folder: Path, w
             raise
         return _fail(_student_error(exc, run_folder, "while setting up the supervisor"), 1)
 
-    trace = sim.new_trace()
     sup = brain.supervisor
-    if sup.current_state in ("go_to_goal", "ao_and_gtg"):  # the states that drive to the goal (weeks 3, 5)
-        trace.goal = [float(sup.goal[0]), float(sup.goal[1])]
+    driving = sup.current_state in ("go_to_goal", "ao_and_gtg")  # states that drive to the goal (weeks 3, 5)
+    goal = [float(sup.goal[0]), float(sup.goal[1])] if driving else None
+    trace = sim.run(seconds, stuck=(StepTimeout,))
+    trace.goal = goal or trace.goal
     trace.meta = {"submission": str(folder), "source": "simiam run"}
-    add_row(trace, sim.last, start)
-    error = None
-    for _ in range(int(round(seconds / args.dt))):
-        try:
-            with step_limit(STEP_SECONDS):
-                rec = sim.step()
-        except BrainError as exc:
-            error = f"{folder.name}: your code returned an invalid command at t = {sim.t:.3f} s: {exc}"
-            break
-        except StepTimeout as exc:
-            error = _stuck(exc, run_folder, f"at t = {sim.t:.3f} s")
-            break
-        except BaseException as exc:  # noqa: BLE001 - the student's exception (sys.exit too); keep the trace
-            if isinstance(exc, KeyboardInterrupt):
-                raise
-            error = _student_error(exc, run_folder, f"at t = {sim.t:.3f} s")
-            break
-        add_row(trace, rec)
-        if rec.collided:
-            break
-    trace.collision = sim.first_collision
+    assert trace.ending is not None  # run() always says how it ended
+    error = _ending_words(trace.ending, folder, run_folder)
 
     out = Path(args.out)
     try:
@@ -174,6 +158,18 @@ def _run(args: argparse.Namespace, week: Week, folder: Path, run_folder: Path, w
         print(error, file=sys.stderr)
         return 1
     return 0
+
+
+def _ending_words(ending: Ending, folder: Path, run_folder: Path) -> str | None:
+    """What to tell the student when their code broke the run (None when it did not)."""
+    when = f"at t = {ending.t:.3f} s"
+    if ending.reason is EndReason.INVALID_COMMAND:
+        return f"{folder.name}: your code returned an invalid command {when}: {ending.message}"
+    if ending.reason is EndReason.STUCK and isinstance(ending.error, StepTimeout):
+        return _stuck(ending.error, run_folder, when)
+    if ending.reason is EndReason.BRAIN_ERROR and ending.error is not None:
+        return _student_error(ending.error, run_folder, when)
+    return None
 
 
 def _student_error(exc: BaseException, folder: Path, when: str) -> str:

@@ -14,6 +14,9 @@ import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
+
+from simiam.brain import Brain, Readings
 
 
 class StepTimeout(BaseException):
@@ -39,6 +42,18 @@ def step_limit(seconds: float) -> Iterator[None]:
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0, 0)
         signal.signal(signal.SIGALRM, previous)
+
+
+class LimitedBrain:
+    """A Brain whose every step runs under `step_limit(seconds)`: the student's code, not the physics."""
+
+    def __init__(self, brain: Brain, seconds: float) -> None:
+        self.brain = brain
+        self.seconds = seconds
+
+    def step(self, readings: Readings) -> Any:
+        with step_limit(self.seconds):
+            return self.brain.step(readings)
 
 
 def stuck_at(exc: BaseException, folder: Path) -> str | None:

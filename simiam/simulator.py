@@ -15,8 +15,9 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any, Protocol, TypeGuard
+from typing import Any
 
+from simiam.brain import Brain, BrainError, Command, ConstantBrain, Readings, validate_command
 from simiam.physics.collision import plate_collides
 from simiam.physics.ir_ranging import cone_range
 from simiam.physics.segments import ObstacleEdges, PolygonBox
@@ -25,105 +26,14 @@ from simiam.robot.dynamics import move
 from simiam.robot.ir_sensor import distance_to_raw, mounted_cone
 from simiam.robot.quickbot import RobotSpec, limit_speeds
 from simiam.robot.wheel_encoder import WheelEncoder
-from simiam.trace import Trace
+from simiam.signals import WEEKS_1_TO_4, debug_plan, declared, headers
+from simiam.trace import Ending, EndReason, Trace
 from simiam.world.world import World
 
+__all__ = ["Brain", "BrainError", "Command", "ConstantBrain", "Ending", "EndReason", "Readings", "Simulator",
+           "StepRecord", "add_row", "run_steps", "validate_command"]
+
 Pose = tuple[float, float, float]
-
-
-class Brain(Protocol):
-    """What drives the robot: plain readings in, a plain command out."""
-
-    def step(self, readings: dict) -> dict: ...
-
-
-class BrainError(Exception):
-    """The brain returned something that is not a valid command."""
-
-
-class ConstantBrain:
-    """A trusted brain that requests the same wheel speeds every step (tests, benchmarks)."""
-
-    def __init__(self, vel_r: float, vel_l: float) -> None:
-        self.vel_r = vel_r
-        self.vel_l = vel_l
-
-    def step(self, readings: dict) -> dict:
-        return {"vel_r": self.vel_r, "vel_l": self.vel_l, "estimate": None, "state": "constant", "debug": {}}
-
-
-def _real(x: Any) -> TypeGuard[float]:
-    """A finite int or float (bool and numpy scalars are not), small enough to become a float."""
-    t = type(x)
-    if t is float:
-        return x - x == 0.0  # false for inf and nan
-    return t is int and -1e308 < x < 1e308
-
-
-_FLOAT = {float}
-
-
-def _finite_or_none(x: Any) -> float | None:
-    return float(x) if _real(x) else None
-
-
-def _pair_or_none(p: Any) -> list[float] | None:
-    if isinstance(p, (list, tuple)) and len(p) == 2 and all(_real(c) for c in p):
-        return [float(p[0]), float(p[1])]
-    return None
-
-
-def _points_or_none(p: Any) -> list[list[float]] | None:
-    if not (isinstance(p, (list, tuple)) and len(p) == 2):
-        return None
-    out = []
-    for row in p:
-        if not (isinstance(row, (list, tuple)) and len(row) == 5):
-            return None
-        if set(map(type, row)) == _FLOAT:  # the common case: one finiteness test for the whole row
-            total = row[0] + row[1] + row[2] + row[3] + row[4]
-            if total - total != 0.0:
-                return None
-            out.append(list(row))
-        elif all(_real(c) for c in row):
-            out.append([float(c) for c in row])
-        else:
-            return None
-    return out
-
-
-def validate_command(command: Any) -> dict:
-    """Check and normalise a brain's command; raises BrainError with a readable message.
-
-    vel_r / vel_l must be finite real numbers (bool is rejected); estimate is None or three finite numbers;
-    state a string (or None). Debug values that are missing, NaN or malformed become None (they are only
-    plotted); unknown keys are dropped.
-    """
-    if not isinstance(command, dict):
-        raise BrainError(f"the command must be a dict, got {type(command).__name__}")
-    out: dict = {}
-    for key in ("vel_r", "vel_l"):
-        val = command.get(key)
-        if not _real(val):
-            raise BrainError(f"{key} must be a finite number (rad/s), got {val!r:.60}")
-        out[key] = float(val)
-    est = command.get("estimate")
-    if est is not None:
-        if not (isinstance(est, (list, tuple)) and len(est) == 3 and all(_real(c) for c in est)):
-            raise BrainError(f"estimate must be three finite numbers (x, y, theta), got {est!r:.80}")
-        est = [float(c) for c in est]
-    out["estimate"] = est
-    state = command.get("state")
-    if state is not None and not isinstance(state, str):
-        raise BrainError(f"state must be a string, got {type(state).__name__}")
-    out["state"] = None if state is None else state[:80]
-    debug = command.get("debug")
-    debug = debug if isinstance(debug, dict) else {}
-    out["debug"] = {"v": _finite_or_none(debug.get("v")), "w": _finite_or_none(debug.get("w")),
-                    "theta_g": _finite_or_none(debug.get("theta_g")),
-                    "u_ao": _pair_or_none(debug.get("u_ao")),
-                    "ir_points_wf": _points_or_none(debug.get("ir_points_wf"))}
-    return out
 
 
 @dataclass(frozen=True)
@@ -139,21 +49,28 @@ class StepRecord:
     ir_range: tuple[float, ...]
     vel_r: float
     vel_l: float
-    command: dict | None
+    command: Command | None
     collided: bool
 
 
 class Simulator:
     """One QuickBot in `world`, stepped at a fixed dt and driven by `brain`.
 
+    `signals` names the debug signals the brain reports (simiam.signals; default: weeks 1-4's). The IR
+    sensors are the spec's `ir_mounts`, however many.
+
     >>> sim = Simulator(load_world("week3"), ConstantBrain(5, 5), spec_for_week(3))
-    >>> rec = sim.step(); trace = sim.run(seconds=10)
+    >>> rec = sim.step(); trace = sim.run(seconds=10); trace.ending.reason
     """
 
     def __init__(self, world: World, brain: Brain, spec: RobotSpec, dt: float = 0.033,
-                 start: Pose | None = None) -> None:
+                 start: Pose | None = None, signals: Sequence[str] = WEEKS_1_TO_4) -> None:
         if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
             raise ValueError(f"dt must be a positive number of seconds, got {dt!r}")
+        self.signals = declared(signals)
+        self._n_ir = len(spec.ir_mounts)
+        self._plan = debug_plan(self.signals, self._n_ir)
+        self._brain_exception: BaseException | None = None  # what the brain itself raised, for run()
         self.world = world
         self.brain = brain
         self.spec = spec
@@ -195,12 +112,12 @@ class Simulator:
 
     @property
     def ir_raw(self) -> tuple[int, ...]:
-        """The five raw IR values computed at the end of the last step."""
+        """The raw IR values (one per sensor) computed at the end of the last step."""
         return tuple(self._ir_raw)
 
     @property
     def ir_range(self) -> tuple[float, ...]:
-        """The five true IR ranges (m) behind `ir_raw`."""
+        """The true IR ranges (m) behind `ir_raw`."""
         return tuple(self._ir_range)
 
     @property
@@ -234,7 +151,7 @@ class Simulator:
         return self._last
 
     def sensor_positions(self) -> list[tuple[float, float]]:
-        """World positions of the five IR sensors (the cone apexes) at the current true pose."""
+        """World positions of the IR sensors (the cone apexes) at the current true pose."""
         xs, ys = transform_fast((self._x, self._y, self._theta), [cone[0] for cone in self._cones])
         return list(zip(xs, ys, strict=True))
 
@@ -290,15 +207,20 @@ class Simulator:
         self._enc_r.update(self._vel_r, self.dt)
         self._enc_l.update(self._vel_l, self.dt)
 
-    def _think(self, t: float) -> dict:
-        readings = {"t": t, "dt": self.dt, "ticks": [self._enc_r.ticks, self._enc_l.ticks],
-                    "ir_raw": list(self._ir_raw)}
-        command = validate_command(self.brain.step(readings))
+    def _think(self, t: float) -> Command:
+        readings: Readings = {"t": t, "dt": self.dt, "ticks": [self._enc_r.ticks, self._enc_l.ticks],
+                              "ir_raw": list(self._ir_raw)}
+        try:
+            answer = self.brain.step(readings)
+        except BaseException as exc:
+            self._brain_exception = exc  # run() ends on this one; anything else raised in a step is a bug
+            raise
+        command = validate_command(answer, self.signals, self._n_ir, self._plan)
         self._vel_r, self._vel_l = limit_speeds(command["vel_r"], command["vel_l"],
                                                 self.spec.max_vel, self.spec.min_vel)
         return command
 
-    def _record(self, command: dict | None) -> StepRecord:
+    def _record(self, command: Command | None) -> StepRecord:
         return StepRecord(self._k, self._k * self.dt, (self._x, self._y, self._theta),
                           (self._enc_r.ticks, self._enc_l.ticks), tuple(self._ir_raw), tuple(self._ir_range),
                           self._vel_r, self._vel_l, command, self._collided)
@@ -311,7 +233,7 @@ class Simulator:
         return self._finish(command)
 
     # The three phases of a step, separate so that a Fleet can run the physics of all robots together.
-    def _advance(self) -> dict:
+    def _advance(self) -> Command:
         """Move and run the brain (week 1: the brain first); returns the validated command."""
         self._k += 1
         t = self._k * self.dt
@@ -331,7 +253,7 @@ class Simulator:
                                      "pose": [self._x, self._y, self._theta]}
         return self._collided
 
-    def _finish(self, command: dict | None) -> StepRecord:
+    def _finish(self, command: Command | None) -> StepRecord:
         self._last = self._record(command)
         return self._last
 
@@ -341,19 +263,15 @@ class Simulator:
         return ObstacleEdges([list(zip(xs, ys, strict=True))]).polygons[0]
 
     def run(self, seconds: float, stop_on_collision: bool = True,
-            until: Callable[[StepRecord], bool] | None = None) -> Trace:
-        """Step for `seconds` of simulated time (or until a collision / `until(record)` is true) and
-        return the Trace, row 0 being the state before this run's first step."""
-        n = int(round(seconds / self.dt))
-        trace = self.new_trace()
-        add_row(trace, self._last, self.start if self._k == 0 else None)
-        for _ in range(n):
-            rec = self.step()
-            add_row(trace, rec)
-            if (self._collided and stop_on_collision) or (until is not None and until(rec)):
-                break
-        trace.collision = self._first_collision
-        return trace
+            until: Callable[[StepRecord], bool] | None = None,
+            stuck: tuple[type[BaseException], ...] = ()) -> Trace:
+        """Step for `seconds` of simulated time and return the Trace, row 0 being the state before this
+        run's first step. The run ends early at a collision (unless `stop_on_collision` is false), once
+        `until(record)` is true, or when the brain breaks: it raises (`stuck` lists the exception types
+        that mean it did not answer in time) or returns an invalid command. `trace.ending` says which
+        (simiam.trace.Ending, with the brain's exception in `.error`); the failed step is not recorded."""
+        test = None if until is None else (lambda records: until(records[0]))
+        return run_steps([self], lambda: [self.step()], seconds, stop_on_collision, test, stuck)[0]
 
     def new_trace(self) -> Trace:
         """An empty Trace with this run's header (week, dt, world, robot, start, goal)."""
@@ -365,13 +283,68 @@ class Simulator:
                  "wheel_base_length": spec.wheel_base_length}
         goal = None if self.world.goal is None else list(self.world.goal)
         return Trace(week=spec.week, dt=self.dt, world=self.world.to_json(), robot=robot,
-                     start=list(self.start), goal=goal)
+                     start=list(self.start), goal=goal, signals=headers(self.signals, self._n_ir))
+
+
+def run_steps(sims: Sequence[Simulator], step: Callable[[], list[StepRecord]], seconds: float,
+              stop_on_collision: bool = True, until: Callable[[list[StepRecord]], bool] | None = None,
+              stuck: tuple[type[BaseException], ...] = ()) -> list[Trace]:
+    """THE step loop, for one Simulator (`Simulator.run`) or a Fleet (`Fleet.run`): call `step()` (one
+    record per robot) for `seconds` of the first robot's dt, record every robot's trace and end them all
+    with the same Ending. Only what a brain itself raised, or its invalid command, ends a run quietly;
+    any other exception is a bug of the caller or the simulator and propagates."""
+    lead = sims[0]
+    traces = []
+    for sim in sims:
+        trace = sim.new_trace()
+        add_row(trace, sim.last, sim.start if sim.steps_taken == 0 else None)
+        traces.append(trace)
+    ending = None
+    for _ in range(int(round(seconds / lead.dt))):
+        try:
+            records = step()
+        except BaseException as exc:
+            ending = _broken(sims, exc, stuck)
+            break
+        hit = False
+        for trace, rec in zip(traces, records, strict=True):
+            add_row(trace, rec)
+            hit = hit or rec.collided
+        if hit and stop_on_collision:
+            ending = Ending(EndReason.COLLISION, lead.steps_taken, lead.t)
+            break
+        if until is not None and until(records):
+            ending = Ending(EndReason.UNTIL, lead.steps_taken, lead.t)
+            break
+    if ending is None:
+        ending = Ending(EndReason.TIME_UP, lead.steps_taken, lead.t)
+    for sim, trace in zip(sims, traces, strict=True):
+        trace.collision = sim.first_collision
+        trace.ending = ending
+    return traces
+
+
+def _broken(sims: Sequence[Simulator], exc: BaseException, stuck: tuple[type[BaseException], ...]) -> Ending:
+    """How a step that raised `exc` ended the run; re-raises what no brain raised (and Ctrl-C)."""
+    lead = sims[0]
+    robot = next((i for i, sim in enumerate(sims) if sim._brain_exception is exc), None)
+    which = f"robot {robot + 1}: " if robot is not None and len(sims) > 1 else ""
+    if isinstance(exc, KeyboardInterrupt):
+        raise exc
+    if robot is not None:
+        reason = EndReason.STUCK if stuck and isinstance(exc, stuck) else EndReason.BRAIN_ERROR
+        text = str(exc)
+        words = which + type(exc).__name__ + (f": {text}" if text else "")
+        return Ending(reason, lead.steps_taken, lead.t, words, exc)
+    if isinstance(exc, BrainError):
+        return Ending(EndReason.INVALID_COMMAND, lead.steps_taken, lead.t, which + str(exc), exc)
+    raise exc
 
 
 def add_row(trace: Trace, rec: StepRecord, estimate: Pose | None = None) -> None:
     """Append one StepRecord to the trace's columns (the estimate and debug values come from its command)."""
     s = trace.steps
-    cmd = rec.command or {}
+    cmd: Any = rec.command or {}
     est = cmd.get("estimate") or estimate
     debug = cmd.get("debug") or {}
     s["t"].append(rec.t)
@@ -387,7 +360,7 @@ def add_row(trace: Trace, rec: StepRecord, estimate: Pose | None = None) -> None
     s["vel_l"].append(rec.vel_l)
     s["ir_raw"].append(list(rec.ir_raw))
     s["ir_range"].append(list(rec.ir_range))
-    for key in ("theta_g", "u_ao", "ir_points_wf", "v", "w"):
-        s[key].append(debug.get(key))
+    for name in trace.signal_names:
+        s[name].append(debug.get(name))
     s["state"].append(cmd.get("state"))
     s["collided"].append(rec.collided)

@@ -70,8 +70,10 @@ class Context:
 
 
 # What the report can draw for a scenario run (grader/report/svg.py): the path in the world, the heading
-# against the goal direction (settle band), the heading against a fixed theta_d.
-PLOTS = ("trajectory", "heading", "angle")
+# against the goal direction (settle band), the heading against a fixed theta_d; which controller ran when
+# (grader/report/signal_plots.py); and "signals:NAME,NAME" for declared debug signals over time.
+PLOTS = ("trajectory", "heading", "angle", "states")
+SIGNAL_PLOT = "signals:"
 
 
 @dataclass(frozen=True)
@@ -90,7 +92,7 @@ class Check:
     plots: tuple[str, ...] = ("trajectory",)
 
     def __post_init__(self) -> None:
-        unknown = sorted(set(self.plots) - set(PLOTS))
+        unknown = sorted(p for p in self.plots if p not in PLOTS and not p.startswith(SIGNAL_PLOT))
         if unknown:
             raise ValueError(f"check {self.id}: unknown plots {unknown} (known: {', '.join(PLOTS)})")
 

@@ -25,6 +25,7 @@ import jinja2
 from markupsafe import Markup
 
 from grader.report import svg
+from grader.report.signal_plots import declared_plots
 from grader.untrusted import printable
 
 # Metrics the scenario checks report, in the order shown, with how to print them.
@@ -173,7 +174,9 @@ def _plots(check: dict, goal: object, has_theta_d: bool) -> set[str]:
 def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
                hrefs: dict[str, str], shown: set[str], max_rows: int = REPLAY_ROWS) -> list[dict]:
     """The runs of one check; `shown` holds the trace keys an earlier check already shows (their replay
-    is linked, not embedded again, and each section id stays unique in the page)."""
+    is linked, not embedded again, and each section id stays unique in the page). Each run gets the
+    plots the check declares (its `plots`: trajectory, heading, angle; states and signals by
+    grader.report.signal_plots)."""
     from simiam.viewer.replay import TraceFormatError, render_replay
 
     views = []
@@ -193,12 +196,14 @@ def _run_views(check: dict, traces: dict, runs: list[dict], replays: str,
         anchor = run_anchor(key) + ("-in-" + _slug(str(check.get("id", ""))) if shared else "")
         view: dict[str, Any] = {"key": key, "label": label, "anchor": anchor, "problem": "",
                                 "shared": None, "never_started": False,
-                                "trajectory": None, "heading": None, "srcdoc": None, "href": hrefs.get(key)}
+                                "trajectory": None, "heading": None, "plots": [], "srcdoc": None,
+                                "href": hrefs.get(key)}
         if len(steps.get("t") or []) < 2:  # row 0 is the start pose, before the first step
             view["never_started"] = True  # one line instead of an empty plot (the reason is in the message)
             views.append(view)
             continue
         goal = trace.get("goal") or metrics.get("goal")
+        view["plots"] = declared_plots(check.get("plots"), trace)
         given = metrics.get("theta_d")
         theta_d = float(given) if isinstance(given, (int, float)) and math.isfinite(given) else None
         plots = _plots(check, goal, theta_d is not None)

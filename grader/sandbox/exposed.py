@@ -44,6 +44,7 @@ EXPOSED: tuple[str, ...] = (
             for p in (Path(simiam.__file__).parent / "course" / "weeks").glob("week*.py")),
     "simiam/robot/__init__.py",
     "simiam/robot/quickbot.py",
+    "simiam/signals.py",               # LocalBrain reads the debug signals with it
     "grader/__init__.py",
     "grader/inside/__init__.py",       # the worker's own package: imports nothing trusted (grader/inside/)
     "grader/inside/caps.py",

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -303,10 +304,10 @@ def _check_load(value: Any) -> dict:
 class RemoteBrain:
     """Seam 1 Brain running the student's supervisor in the session's worker.
 
-    The first step sends `brain_start` with `settings`; each step sends the readings and validates the
-    command with simiam.simulator.validate_command. Raises the session's errors (StudentError,
-    StudentTimeout, WorkerDied) or BrainError for an invalid command; a scenario check turns either into a
-    failure with its message.
+    The first step sends `brain_start` with `settings`; each step sends the readings and returns the
+    worker's answer as it came: the Simulator checks it (simiam.brain.validate_command, the one place a
+    command is validated) and ends the run on an invalid one. Raises the session's errors
+    (StudentError, StudentTimeout, WorkerDied), which end the run too (`trace.ending`).
     """
 
     def __init__(self, session: StudentSession, settings: dict | None = None,
@@ -316,24 +317,8 @@ class RemoteBrain:
         self.step_timeout = step_timeout
         self._started = False
 
-    def step(self, readings: dict) -> dict:
+    def step(self, readings: Mapping[str, Any]) -> Any:
         if not self._started:
             self.session.call("brain_start", settings=self.settings)
             self._started = True
-        command = self.session.call("brain_step", timeout=self.step_timeout, readings=readings)
-        return _validate_command(command)
-
-
-def _validate_command(command: Any) -> dict:
-    try:
-        from simiam.simulator import validate_command
-    except ImportError:  # the simulator is not there yet: do the minimal type check ourselves
-        from grader.sandbox.validate import as_float
-
-        if not isinstance(command, dict):
-            raise StudentError("your supervisor returned no command", "") from None
-        as_float(command.get("vel_r"), "vel_r")
-        as_float(command.get("vel_l"), "vel_l")
-        return command
-    checked = validate_command(command)
-    return command if checked is None else checked
+        return self.session.call("brain_step", timeout=self.step_timeout, readings=readings)

@@ -5,12 +5,13 @@ Implements the simulator's Brain seam: `step(readings) -> command` with plain va
 
 from __future__ import annotations
 
-import math
-import numbers
-from typing import TYPE_CHECKING
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
 
 from simiam.control.pose import Pose2D
 from simiam.control.robot_view import RobotView
+from simiam.signals import declared, read_signals, week_signals
+from simiam.signals import plain as _plain
 
 if TYPE_CHECKING:
     from simiam.course.week import Week
@@ -28,11 +29,15 @@ class LocalBrain:
     controller name such as "go_to_goal"), and controller gains as
     `{"gains": {"go_to_goal": {"Kp": 4, "Ki": 0.01, "Kd": 0.01}}}` (a top-level
     `{"go_to_goal": {...}}` is accepted too). `start` is where the estimate starts (default: the week's).
+    The debug values are the week's declared signals (`week.debug_signals`, else weeks 1-4's), read from
+    the supervisor and its current controller by simiam.signals.read_signals.
     """
 
     def __init__(self, submission, week: Week, settings: dict | None = None,
                  start: tuple[float, float, float] | None = None) -> None:
         self.week = week
+        self.signals = declared(week_signals(week))
+        self._n_ir = len(week.spec.ir_mounts)
         self.robot = RobotView(week.spec, submission)
         supervisor_class = submission.module("qb_supervisor").QBSupervisor
         self.supervisor = supervisor_class()
@@ -56,59 +61,19 @@ class LocalBrain:
         if settings.get("state"):
             sup.switch_to_state(settings["state"])
 
-    def step(self, readings: dict) -> dict:
-        """Feed one step's readings to the robot, run the supervisor once, return the command."""
+    def step(self, readings: Mapping[str, Any]) -> dict[str, Any]:
+        """Feed one step's readings to the robot, run the supervisor once, return the command
+        (simiam.brain's Readings and Command; not imported here, the worker has no simiam.brain)."""
         self.robot.update(readings)
         sup = self.supervisor
         sup.outputs = None
+        sup.event_values = {}
         sup.execute(readings["dt"])
-        ctrl = sup.current_controller
-        v, w = sup.outputs if sup.outputs is not None else (None, None)
         return {
             "vel_r": _plain(self.robot.vel_r),
             "vel_l": _plain(self.robot.vel_l),
             "estimate": [_plain(c) for c in sup.state_estimate.unpack()],
             "state": str(sup.current_state),
-            "debug": {
-                "v": _maybe(v),
-                "w": _maybe(w),
-                "theta_g": _maybe(getattr(ctrl, "theta_g", None)),
-                "u_ao": _vector(getattr(ctrl, "u_ao", None), 2),
-                "ir_points_wf": _points(getattr(ctrl, "ir_distances_wf", None)),
-            },
+            "debug": read_signals(sup, self.signals, self._n_ir),
         }
 
-
-def _plain(x):
-    """A real number as a Python float (numpy scalars included); anything else unchanged for validation."""
-    if isinstance(x, numbers.Real) and not isinstance(x, bool):
-        try:
-            return float(x)
-        except Exception:  # noqa: BLE001 - a hostile "number": let the simulator's validation reject it
-            return x
-    return x
-
-
-def _maybe(x) -> float | None:
-    """A finite float for the debug channel, or None."""
-    x = _plain(x)
-    return x if isinstance(x, float) and math.isfinite(x) else None
-
-
-def _vector(u, n: int) -> list[float] | None:
-    try:
-        values = [_maybe(u[i]) for i in range(n)]
-    except (TypeError, IndexError, KeyError):
-        return None
-    numbers = [v for v in values if v is not None]
-    return numbers if len(numbers) == n else None
-
-
-def _points(p) -> list[list[float]] | None:
-    """IR points in the world frame as [[x]*5, [y]*5] (first two rows of a 2x5 or 3x5 array)."""
-    try:
-        rows = [[_maybe(p[r][i]) for i in range(5)] for r in range(2)]
-    except (TypeError, IndexError, KeyError):
-        return None
-    numbers = [[v for v in row if v is not None] for row in rows]
-    return numbers if all(len(row) == 5 for row in numbers) else None

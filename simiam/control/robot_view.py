@@ -6,6 +6,9 @@ supervisor asks for; the trusted simulator applies the motor limits afterwards.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from typing import Any
+
 from simiam.control.pose import Pose2D
 
 
@@ -51,8 +54,8 @@ class RobotView:
         self.vel_r = 0.0
         self.vel_l = 0.0
 
-    def update(self, readings: dict) -> None:
-        """Take one step's readings: {"ticks": [right, left], "ir_raw": [5 ints], ...}."""
+    def update(self, readings: Mapping[str, Any]) -> None:
+        """Take one step's readings: {"ticks": [right, left], "ir_raw": [one int per IR sensor], ...}."""
         self.encoders[0].ticks, self.encoders[1].ticks = readings["ticks"]
         for sensor, raw in zip(self.ir_array, readings["ir_raw"], strict=True):
             sensor._raw = raw

@@ -111,6 +111,9 @@ class Supervisor:
             "unsafe": self.unsafe,
             "obstacle_cleared": self.obstacle_cleared,
         }
+        # the events check_event evaluated in this step, by name: the trace records them (simiam.signals);
+        # LocalBrain empties it before each step, so an event not checked this step is recorded as None
+        self.event_values: dict[str, bool] = {}
 
     # -- controllers and states -------------------------------------------------------------
     def add_controller(self, controller: Controller) -> Controller:
@@ -140,7 +143,9 @@ class Supervisor:
         An unknown name raises UnknownNameError with your file and line (the original returned false)."""
         if not isinstance(name, str) or name not in self.events:
             raise _unknown("event", name, list(self.events))
-        return bool(self.events[name]())
+        value = bool(self.events[name]())
+        self.event_values[name] = value
+        return value
 
     def at_goal(self) -> bool:
         """True when the *estimated* position is closer than d_stop to the goal."""

@@ -16,6 +16,7 @@ from typing import Any
 
 from simiam.course.placeholders import Placeholder
 from simiam.robot.quickbot import RobotSpec
+from simiam.signals import declared
 
 # The settings a supervisor understands by name (Supervisor attributes); others go in `extra`.
 NAMED_SETTINGS = ("v", "goal", "d_stop", "theta_d", "state")
@@ -74,7 +75,8 @@ class Week:
       `seconds`, `dt`, `start`: its length, time step and start pose, one value for `simiam run` and `grade`.
     - `checks`: the module of this week's checks, as a dotted name (e.g. "grader.checks.week3"); it
       defines CHECKS (and may declare PLOTS for the report).
-    - `debug_signals`: the names of the debug values the week's trace carries (u_ao, theta_g, ...).
+    - `debug_signals`: the names of the debug values the week's trace carries (u_ao, theta_g, ...), each
+      declared in simiam/signals.py (its kind and where the brain reads it).
     - `summary`: the lines `simiam run` prints after the run, by name ("heading", "goal", "path", ...).
     """
 
@@ -120,6 +122,10 @@ class Week:
         object.__setattr__(self, "blocks", tuple(blocks))
         if len({b.key for b in self.blocks}) != len(self.blocks):
             raise ValueError(f"{where}: a block is declared twice")
+        try:  # a misspelt debug signal is an error here, not a column that silently stays empty
+            declared(self.debug_signals)
+        except ValueError as exc:
+            raise ValueError(f"{where}: {exc}") from None
 
     @property
     def name(self) -> str:

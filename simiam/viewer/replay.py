@@ -19,11 +19,14 @@ from typing import Any
 import jinja2
 from markupsafe import Markup
 
+from simiam.robot.quickbot import IR_MOUNTS
+from simiam.signals import WEEKS_1_TO_4, declared, from_headers, headers
+
 TRACE_FORMAT = "simiam-trace/1"
 
-# Decimals kept when embedding (columnar, rounded): 0.1 mm in position, 1e-4 rad, 1e-3 rad/s.
-_DIGITS = {"t": 4, "x": 4, "y": 4, "theta": 4, "x_est": 4, "y_est": 4, "theta_est": 4, "theta_g": 4,
-           "vel_r": 3, "vel_l": 3, "v": 4, "w": 3}
+# Decimals kept when embedding (columnar, rounded): 0.1 mm in position, 1e-4 rad, 1e-3 rad/s; signals 1e-4.
+_DIGITS = {"t": 4, "x": 4, "y": 4, "theta": 4, "x_est": 4, "y_est": 4, "theta_est": 4, "vel_r": 3, "vel_l": 3}
+_SIGNAL_DIGITS = 4
 _REQUIRED_STEPS = ("t", "x", "y", "theta")
 
 
@@ -65,6 +68,40 @@ def _states(states: list, n: int) -> list[list]:
         if not runs or runs[-1][1] != name:
             runs.append([k, name])
     return runs
+
+
+def _signal_header(trace: dict) -> list[dict]:
+    """The trace's declared signals (a trace without them recorded weeks 1-4's five)."""
+    robot = trace.get("robot") or {}
+    n_ir = len(robot.get("ir_mounts") or []) or len(IR_MOUNTS)
+    raw = trace.get("signals")
+    try:
+        return from_headers(raw) if raw is not None else headers(declared(WEEKS_1_TO_4), n_ir)
+    except ValueError as exc:
+        raise TraceFormatError(str(exc)) from None
+
+
+def _pack_signal(sig: dict, values: list, n: int) -> Any:
+    """One signal's column in the page's form, or None if it never has a value: numbers (scalar, count;
+    a flag as 1/0), run-length text (label), {"x": [...], "y": [...]} (vector2) or {"x": [[...] per
+    column], "y": ...} (points)."""
+    values = values[:n] + [None] * (n - len(values))
+    if not any(v is not None for v in values):
+        return None
+    kind = sig["kind"]
+    if kind in ("scalar", "count"):
+        return _column(values, _SIGNAL_DIGITS)
+    if kind == "flag":
+        return [None if v is None else int(v is True) for v in values]
+    if kind == "label":
+        return _states([v if isinstance(v, str) else None for v in values], n)
+    if kind == "vector2":
+        xs, ys = _split(values, n, 2, _SIGNAL_DIGITS)
+        return {"x": xs, "y": ys}
+    size = sig["size"]
+    rows_x = [p[0] if isinstance(p, (list, tuple)) and p else None for p in values]
+    rows_y = [p[1] if isinstance(p, (list, tuple)) and len(p) > 1 else None for p in values]
+    return {"x": _split(rows_x, n, size, _SIGNAL_DIGITS), "y": _split(rows_y, n, size, _SIGNAL_DIGITS)}
 
 
 def thin_rows(trace: dict, max_rows: int) -> tuple[dict, int]:
@@ -118,17 +155,17 @@ def pack_trace(trace: dict) -> dict:
             cols[name] = _column(vals[:n] + [None] * (n - len(vals)), digits)
     for name in ("x_est", "y_est", "theta_est", "vel_r", "vel_l"):
         cols.setdefault(name, [None] * n)
+    n_ir = len(robot.get("ir_mounts") or []) or len(IR_MOUNTS)
     if isinstance(steps.get("ir_range"), list):
-        for k, column in enumerate(_split(steps["ir_range"], n, 5, 4)):
+        for k, column in enumerate(_split(steps["ir_range"], n, n_ir, 4)):
             cols[f"ir{k}"] = column
-    if isinstance(steps.get("u_ao"), list) and any(u is not None for u in steps["u_ao"]):
-        cols["ux"], cols["uy"] = _split(steps["u_ao"], n, 2, 4)
-    points = steps.get("ir_points_wf")
-    if isinstance(points, list) and any(p is not None for p in points):
-        xs = _split([p[0] if isinstance(p, (list, tuple)) and p else None for p in points], n, 5, 4)
-        ys = _split([p[1] if isinstance(p, (list, tuple)) and len(p) > 1 else None for p in points], n, 5, 4)
-        for k in range(5):
-            cols[f"px{k}"], cols[f"py{k}"] = xs[k], ys[k]
+    signals, signal_data = [], {}
+    for sig in _signal_header(trace):
+        values = steps.get(sig["name"])
+        packed_signal = _pack_signal(sig, values, n) if isinstance(values, list) else None
+        if packed_signal is not None:
+            signals.append(sig)
+            signal_data[sig["name"]] = packed_signal
 
     def poly(p: list) -> list:
         return [[_num(v[0], 5), _num(v[1], 5)] for v in p]
@@ -157,7 +194,19 @@ def pack_trace(trace: dict) -> dict:
         "collision": collision,
         "states": _states(steps.get("state") or [], n),
         "steps": cols,
+        "signals": signals,        # the declared signals that have values, in order (name, kind, unit)
+        "signal_data": signal_data,
+        "ending": _ending(trace.get("ending")),
     }
+
+
+def _ending(ending: Any) -> dict | None:
+    """How the run ended, for the page's status line (reason and time; the words only when it broke)."""
+    if not isinstance(ending, dict) or not isinstance(ending.get("reason"), str):
+        return None
+    message = ending.get("message")
+    return {"reason": ending["reason"][:40], "t": _num(ending.get("t"), 4),
+            "message": message[:300] if isinstance(message, str) else ""}
 
 
 def _asset(name: str) -> str:

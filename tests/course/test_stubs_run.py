@@ -28,7 +28,9 @@ def behaviour(folder: Path, week: int) -> str:
         sim = Simulator(
             load_world(cfg.world), LocalBrain(sub, cfg), spec=cfg.spec, dt=cfg.dt, start=cfg.start
         )
-        sim.run(seconds=SECONDS)
+        ending = sim.run(seconds=SECONDS).ending
+        if ending.broken:
+            raise ending.error
     except Exception as e:  # noqa: BLE001 - a stub that crashes is exactly what this reports
         return f"crash: {type(e).__name__}: {e}"
     finally:

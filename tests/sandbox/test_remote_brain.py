@@ -25,7 +25,10 @@ SETTINGS = {"goal": [0.5, 0.5], "v": 0.15}
 def _run(brain, week: int = 3, seconds: float = 2.0) -> dict:
     cfg = get_week(week)
     sim = Simulator(load_world(cfg.world), brain, spec_for_week(week), dt=cfg.dt, start=cfg.start)
-    return sim.run(seconds=seconds).to_json()["steps"]
+    trace = sim.run(seconds=seconds)
+    if trace.ending.broken:  # the run ended at the brain's error, which the tests below look at
+        raise trace.ending.error
+    return trace.to_json()["steps"]
 
 
 def test_remote_and_local_brains_give_the_same_trace(shared_dir, one_mode):
@@ -72,3 +75,18 @@ def test_a_forged_command_is_refused_by_the_simulator_rules(shared_dir, one_mode
     with StudentSession(3, folder, sandbox=one_mode) as session:
         with pytest.raises(BrainError, match="vel_r must be a finite number"):  # ...and checked here
             _run(RemoteBrain(session, SETTINGS))
+
+
+def test_forged_debug_values_reach_the_trace_only_as_declared_kinds(shared_dir, one_mode):
+    # ...and whatever a forged worker puts in debug, the trace keeps only declared names, of their kind
+    junk = ("{'vel_r': 1.0, 'vel_l': 1.0, 'state': 'x' * 10000, 'debug': {'v': 'fast', 'w': [1.0], "
+            "'theta_g': True, 'u_ao': [1, 2, 3], 'ir_points_wf': [[0.0] * 10**5, [0.0] * 10**5], "
+            "'junk': list(range(1000))}}")
+    forge = ("        from simiam.control.local_brain import LocalBrain\n"
+             f"        LocalBrain.step = lambda self, readings: {junk}\n")
+    folder = _broken(shared_dir, forge)
+    with StudentSession(3, folder, sandbox=one_mode) as session:
+        steps = _run(RemoteBrain(session, SETTINGS), seconds=0.5)
+    assert "junk" not in steps and {len(s) for s in steps["state"][2:]} == {80}
+    for name in ("v", "w", "theta_g", "u_ao", "ir_points_wf"):
+        assert steps[name][2:] == [None] * (len(steps["t"]) - 2)

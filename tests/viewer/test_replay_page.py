@@ -63,11 +63,12 @@ def test_packing_is_columnar_rounded_and_json_safe(synthetic):
     n = len(trace["steps"]["t"])
     assert all(len(v) == n for v in steps.values())
     assert steps["x"][3] is None  # NaN would make the page's JSON invalid
-    assert "theta_g" not in steps  # an all-null column is left out
+    sig = packed["signal_data"]
+    assert "theta_g" not in sig and "theta_g" not in [s["name"] for s in packed["signals"]]  # all null
     assert steps["x"][10] == round(trace["steps"]["x"][10], 4)
     assert steps["ir2"][10] == round(trace["steps"]["ir_range"][10][2], 4)
-    assert steps["px4"][10] == round(trace["steps"]["ir_points_wf"][10][0][4], 4)
-    assert steps["uy"][10] == round(trace["steps"]["u_ao"][10][1], 4)
+    assert sig["ir_points_wf"]["x"][4][10] == round(trace["steps"]["ir_points_wf"][10][0][4], 4)
+    assert sig["u_ao"]["y"][10] == round(trace["steps"]["u_ao"][10][1], 4)
     assert packed["states"][0] == [0, "avoid_obstacles"]
     json.dumps(packed, allow_nan=False)
 

@@ -8,6 +8,7 @@ import math
 from simiam.course.placeholders import Placeholder
 from simiam.course.week import SupervisorSettings, Week
 from simiam.robot.quickbot import MAX_VEL_80RPM, RobotSpec
+from simiam.signals import WEEKS_1_TO_4
 
 # The blocks new this week: what the stub holds instead of the solution's body.
 BLOCKS = (
@@ -57,6 +58,6 @@ WEEK = Week(
     blocks=BLOCKS,
     settings=SupervisorSettings(theta_d=math.pi / 4, v=0.1),
     seconds=8.0,
-    debug_signals=("v", "w"),
+    debug_signals=WEEKS_1_TO_4,  # all five, as every trace of weeks 1-4 has carried them
     summary=("heading",),
 )

@@ -8,6 +8,7 @@ from __future__ import annotations
 from simiam.course.placeholders import Placeholder
 from simiam.course.week import SupervisorSettings, Week
 from simiam.robot.quickbot import MAX_VEL_80RPM, RobotSpec
+from simiam.signals import WEEKS_1_TO_4
 
 # The blocks new this week: what the stub holds instead of the solution's body.
 BLOCKS = (
@@ -74,6 +75,6 @@ WEEK = Week(
     blocks=BLOCKS,
     settings=SupervisorSettings(v=0.2, goal=(-1.0, 1.0), d_stop=0.05),
     seconds=30.0,
-    debug_signals=("v", "w", "theta_g"),
+    debug_signals=WEEKS_1_TO_4,  # all five, as every trace of weeks 1-4 has carried them
     summary=("goal",),
 )

@@ -8,6 +8,7 @@ from __future__ import annotations
 from simiam.course.placeholders import Placeholder
 from simiam.course.week import SupervisorSettings, Week
 from simiam.robot.quickbot import MAX_VEL_130RPM, MIN_VEL_30RPM, RobotSpec
+from simiam.signals import WEEKS_1_TO_4
 
 # The blocks new this week: what the stub holds instead of the solution's body.
 BLOCKS = (
@@ -75,6 +76,6 @@ WEEK = Week(
     # v: the original's 0.9 is capped by ensure_w and crashes its own AvoidObstacles
     settings=SupervisorSettings(v=0.15, state="avoid_obstacles"),
     seconds=60.0,
-    debug_signals=("v", "w", "theta_g", "u_ao", "ir_points_wf"),
+    debug_signals=WEEKS_1_TO_4,  # all five, as every trace of weeks 1-4 has carried them
     summary=("goal",),
 )

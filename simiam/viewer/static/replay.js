@@ -7,15 +7,33 @@
 
   var D = JSON.parse(document.getElementById("simiam-data").textContent);
   var S = D.steps;
+  var SIGS = D.signals || [], SD = D.signal_data || {};   // the run's declared debug signals, by name
   var N = S.t.length;
   var T0 = S.t[0], TEND = S.t[N - 1];
 
   var COLORS = {
     body: "#3d6fb6", bodyEdge: "#16325c", ghost: "rgba(120,120,130,0.55)", trail: "#3d6fb6",
-    trailEst: "#8a8f98", heading: "#1f4fd1", thetaG: "#d1242f", uao: "#d1242f", cross: "#111",
+    trailEst: "#8a8f98", heading: "#1f4fd1", cross: "#111",
     goal: "#1a7f37", obstacle: "#9aa3ae", obstacleEdge: "#5b6573", grid: "#eef0f3", crash: "#d1242f",
-    series: ["#1f4fd1", "#d1242f", "#1a7f37", "#b35900", "#7a3db8", "#0f8b8d"]
+    series: ["#1f4fd1", "#d1242f", "#1a7f37", "#b35900", "#7a3db8", "#0f8b8d"],
+    overlay: ["#d1242f", "#1a7f37", "#b35900", "#7a3db8", "#0f8b8d", "#c2185b", "#5d4037"],
+    states: ["#5b8def", "#e0823d", "#43a047", "#ab47bc", "#ef5350", "#26a69a", "#8d6e63", "#546e7a"]
   };
+
+  // ---------- the debug signals the trace declares: vectors, points and headings are toggled overlays ----------
+  var OVERLAYS = [];
+  (function () {
+    var hasVector = SIGS.some(function (g) { return g.kind === "vector2"; }), colour = 0;
+    SIGS.forEach(function (g) {
+      if (g.kind === "vector2" || g.kind === "points" || (g.kind === "scalar" && g.unit === "rad")) {
+        var heading = g.kind === "scalar";
+        OVERLAYS.push({ name: g.name, kind: g.kind, data: SD[g.name],
+                        color: g.kind === "points" ? COLORS.cross : COLORS.overlay[colour++ % COLORS.overlay.length],
+                        // a heading is drawn by default only when no vector is (week 4: u_ao, not θ_ao)
+                        on: !(heading && hasVector) });
+      }
+    });
+  })();
 
   var ICON_PLAY = document.getElementById("btn-play").innerHTML;
   var ICON_PAUSE = "<svg viewBox=\"0 0 16 16\" width=\"16\" height=\"16\" fill=\"currentColor\" aria-hidden=\"true\"><rect x=\"3\" y=\"2\" width=\"3.5\" height=\"12\"/>" +
@@ -224,21 +242,28 @@
     // the heading line (theta, from the estimate as the original drew it), blue
     arrow(sx(from[0]), sy(from[1]), sx(from[0] + L * Math.cos(from[2])), sy(from[1] + L * Math.sin(from[2])),
           COLORS.heading, 2);
-    var tg = S.theta_g && !S.ux ? S.theta_g[i] : null;   // week 4 draws u_ao itself instead
-    if (tg !== null && tg !== undefined) {
-      arrow(sx(from[0]), sy(from[1]), sx(from[0] + L * Math.cos(tg)), sy(from[1] + L * Math.sin(tg)),
-            COLORS.thetaG, 2, [5, 3]);
-    }
-    if (S.px0 && S.px0[i] !== null && S.px0[i] !== undefined) {    // IR points in the world frame: black crosses
-      ctx.strokeStyle = COLORS.cross; ctx.lineWidth = 1.8;
-      for (var k = 0; k < 5; k++) {
-        var x = sx(S["px" + k][i]), y = sy(S["py" + k][i]);
-        ctx.beginPath(); ctx.moveTo(x - 5, y - 5); ctx.lineTo(x + 5, y + 5); ctx.moveTo(x + 5, y - 5); ctx.lineTo(x - 5, y + 5); ctx.stroke();
+    OVERLAYS.forEach(function (o) {
+      if (!o.on) { return; }
+      if (o.kind === "scalar") {                    // a heading: a dashed direction from the estimate
+        var a = o.data[i];
+        if (a !== null && a !== undefined) {
+          arrow(sx(from[0]), sy(from[1]), sx(from[0] + L * Math.cos(a)), sy(from[1] + L * Math.sin(a)), o.color, 2, [5, 3]);
+        }
+      } else if (o.kind === "vector2") {            // a vector in the world frame: an arrow from the estimate
+        var ux = o.data.x[i], uy = o.data.y[i];
+        if (ux !== null && ux !== undefined && uy !== null && uy !== undefined) {
+          arrow(sx(from[0]), sy(from[1]), sx(from[0] + ux), sy(from[1] + uy), o.color, 2.5);
+        }
+      } else {                                      // points in the world frame: crosses
+        ctx.strokeStyle = o.color; ctx.lineWidth = 1.8;
+        for (var k = 0; k < o.data.x.length; k++) {
+          var px = o.data.x[k][i], py = o.data.y[k][i];
+          if (px === null || px === undefined || py === null || py === undefined) { continue; }
+          var x = sx(px), y = sy(py);
+          ctx.beginPath(); ctx.moveTo(x - 5, y - 5); ctx.lineTo(x + 5, y + 5); ctx.moveTo(x + 5, y - 5); ctx.lineTo(x - 5, y + 5); ctx.stroke();
+        }
       }
-    }
-    if (S.ux && S.ux[i] !== null && S.ux[i] !== undefined) {       // u_ao: red arrow from the estimate
-      arrow(sx(from[0]), sy(from[1]), sx(from[0] + S.ux[i]), sy(from[1] + S.uy[i]), COLORS.uao, 2.5);
-    }
+    });
   }
   function draw() {
     var i = st.index, q = pose(i), qe = poseEst(i);
@@ -260,9 +285,9 @@
 
   // ---------- plots linked to the time cursor ----------
   function wrap(a) { return a === null || a === undefined ? null : Math.atan2(Math.sin(a), Math.cos(a)); }
-  function Plot(title, series, fixed) {
+  function Plot(title, series, fixed, rows) {
     var box = document.createElement("div"), h = document.createElement("h2"), c = document.createElement("canvas");
-    box.className = "plot";
+    box.className = rows ? "plot timeline" : "plot";
     h.textContent = title;
     series.forEach(function (s) {
       var key = document.createElement("span"); key.className = "key";
@@ -281,6 +306,7 @@
     var ML = 38, MR = 4, MT = 4, MB = 14;
     function px(t) { return ML + (t - T0) / Math.max(TEND - T0, 1e-9) * (self.w - ML - MR); }
     function py(v) { return MT + (hi - v) / (hi - lo) * (self.h - MT - MB); }
+    if (rows) { ML = 92; c.style.height = (MT + MB + 16 * rows.length) + "px"; }
     self.tAt = function (clientX) {
       var r = c.getBoundingClientRect();
       return T0 + (clientX - r.left - ML) / (self.w - ML - MR) * (TEND - T0);
@@ -293,7 +319,8 @@
       var b = document.createElement("canvas"); b.width = c.width; b.height = c.height;
       var g = b.getContext("2d"); g.setTransform(dpr, 0, 0, dpr, 0, 0);
       g.font = "10px system-ui, sans-serif"; g.fillStyle = "#5b6573"; g.strokeStyle = "#e3e7ec"; g.lineWidth = 1;
-      [lo + pad, (lo + hi) / 2, hi - pad].forEach(function (v) {
+      if (rows) { paintRows(g, rows, px, ML, MT); }
+      (rows ? [] : [lo + pad, (lo + hi) / 2, hi - pad]).forEach(function (v) {
         g.beginPath(); g.moveTo(ML, py(v)); g.lineTo(self.w - MR, py(v)); g.stroke();
         g.fillText(fmtNum(v), 1, py(v) + 3);
       });
@@ -323,6 +350,7 @@
       var dpr = window.devicePixelRatio || 1; g.setTransform(dpr, 0, 0, dpr, 0, 0);
       var x = px(st.t);
       g.strokeStyle = "#111"; g.lineWidth = 1; g.beginPath(); g.moveTo(x, MT); g.lineTo(x, self.h - MB); g.stroke();
+      if (rows) { g.fillStyle = "#1d2530"; g.fillText(visible(stateAt(st.index)).slice(0, 40), Math.min(x + 4, self.w - 60), self.h - 2); }
       series.forEach(function (s) {
         var v = s.ys[st.index];
         if (v === null || !isFinite(v)) { return; }
@@ -335,21 +363,55 @@
     c.addEventListener("pointerup", function () { scrubbing = false; });
     return self;
   }
+  // A timeline: a band per row, coloured per state or label value; an event row is marked where it is true.
+  function Timeline(title, rows) { return Plot(title, [], null, rows); }
+  function paintRows(g, rows, px, ML, MT) {
+    rows.forEach(function (row, r) {
+      var y = MT + 16 * r;
+      g.fillStyle = "#3a4450"; g.textAlign = "right"; g.fillText(visible(row.label).slice(0, 16), ML - 4, y + 11); g.textAlign = "left";
+      if (row.runs) {
+        row.runs.forEach(function (run, j) {
+          var k0 = run[0], k1 = j + 1 < row.runs.length ? row.runs[j + 1][0] : N - 1;
+          var x0 = px(S.t[k0]), x1 = px(S.t[Math.max(k0, k1)]);
+          if (run[1] === "") { return; }
+          g.fillStyle = stateColor(run[1]); g.fillRect(x0, y + 1, Math.max(1, x1 - x0), 13);
+          var text = visible(run[1]);
+          if (g.measureText(text).width < x1 - x0 - 4) { g.fillStyle = "#fff"; g.fillText(text, x0 + 2, y + 11); }
+        });
+      } else {
+        g.fillStyle = "#1d2530";
+        for (var k = 0; k < N; k++) { if (row.flag[k] === 1) { g.fillRect(px(S.t[k]), y + 3, Math.max(1, px(S.t[Math.min(k + 1, N - 1)]) - px(S.t[k])), 9); } }
+      }
+    });
+  }
   function fmtNum(v) { var a = Math.abs(v); return a >= 10 ? v.toFixed(0) : a >= 1 ? v.toFixed(1) : v.toFixed(2); }
-  function col(name) { return S[name] || null; }
-  function hasValues(a) { return !!a && a.some(function (v) { return v !== null; }); }
 
   var plots = [];
-  // the reference heading the controller steered to: θ_g (go to goal) or, with u_ao recorded, θ_ao
-  var REF = S.ux ? "θ_ao" : "θ_g";
+  function stateColor(name) {        // the same state name gets the same colour on every page
+    var h = 0;
+    for (var k = 0; k < name.length; k++) { h = (h * 31 + name.charCodeAt(k)) % 1000003; }
+    return COLORS.states[h % COLORS.states.length];
+  }
   (function buildPlots() {
+    // the state timeline (which controller ran when), then one row per label signal and per event
+    var rows = [{ label: "state", runs: D.states }];
+    SIGS.forEach(function (g) {
+      if (g.kind === "label") { rows.push({ label: g.name, runs: SD[g.name] }); }
+      if (g.kind === "flag") { rows.push({ label: g.name, flag: SD[g.name] }); }
+    });
+    var named = D.states.some(function (run) { return run[1] !== ""; });
+    if (named || rows.length > 1) { plots.push(Timeline(rows.length > 1 ? "States and events" : "States", rows)); }
     var thetaEst = S.theta_est.map(wrap);
     var hs = [{ label: "θ (estimate)", ys: thetaEst, color: COLORS.series[0], breakOnWrap: true, width: 1.6 }];
-    if (hasValues(col("theta_g"))) {
-      hs.push({ label: REF, ys: S.theta_g, color: COLORS.series[1], dash: [5, 3], breakOnWrap: true, width: 1.6 });
-    }
+    var headings = [];
+    OVERLAYS.forEach(function (o) {
+      if (o.kind === "scalar") {
+        hs.push({ label: o.name, ys: o.data, color: o.color, dash: [5, 3], breakOnWrap: true, width: 1.6 });
+        headings.push(o.name);
+      }
+    });
     hs.push({ label: "θ (true)", ys: S.theta.map(wrap), color: "#9aa3ae", breakOnWrap: true, width: 1 });
-    plots.push(Plot(hasValues(col("theta_g")) ? "Heading θ and " + REF + " (rad)" : "Heading θ (rad)", hs));
+    plots.push(Plot(headings.length ? "Heading θ and " + headings.join(", ") + " (rad)" : "Heading θ (rad)", hs));
     if (D.goal) {
       var dg = S.x.map(function (x, k) { return Math.hypot(D.goal[0] - x, D.goal[1] - S.y[k]); });
       plots.push(Plot("Distance to goal (m)", [{ label: "true", ys: dg, color: COLORS.series[2] }]));
@@ -357,16 +419,29 @@
     plots.push(Plot("Wheel speeds (rad/s)", [
       { label: "right", ys: S.vel_r, color: COLORS.series[0] }, { label: "left", ys: S.vel_l, color: COLORS.series[3] }]));
     var irs = [];
-    for (var k = 0; k < 5; k++) { if (S["ir" + k]) { irs.push({ label: "IR" + (k + 1), ys: S["ir" + k], color: COLORS.series[k] }); } }
+    for (var k = 0; S["ir" + k]; k++) { irs.push({ label: "IR" + (k + 1), ys: S["ir" + k], color: COLORS.series[k % COLORS.series.length] }); }
     if (irs.length) { plots.push(Plot("IR distances (m)", irs, [0, D.robot.ir_max_range])); }
+    // every other number the run declared: one plot per unit (counts on their own)
+    var byUnit = {}, units = [];
+    SIGS.forEach(function (g) {
+      if (!((g.kind === "scalar" && g.unit !== "rad") || g.kind === "count")) { return; }
+      var unit = g.kind === "count" ? "count" : (g.unit || "");
+      if (!byUnit[unit]) { byUnit[unit] = []; units.push(unit); }
+      byUnit[unit].push(g.name);
+    });
+    units.forEach(function (unit) {
+      var series = byUnit[unit].map(function (name, j) { return { label: name, ys: SD[name], color: COLORS.series[j % COLORS.series.length] }; });
+      plots.push(Plot(byUnit[unit].join(", ") + (unit ? " (" + unit + ")" : ""), series));
+    });
   })();
 
   // ---------- status line and clock ----------
-  function stateAt(i) {
+  function runAt(runs, i) {
     var name = "";
-    for (var k = 0; k < D.states.length && D.states[k][0] <= i; k++) { name = D.states[k][1]; }
+    for (var k = 0; k < runs.length && runs[k][0] <= i; k++) { name = runs[k][1]; }
     return name;
   }
+  function stateAt(i) { return runAt(D.states, i); }
   function f3(v) { return v === null || v === undefined ? "–" : v.toFixed(3); }
   function updateStatus() {
     var i = st.index;
@@ -378,7 +453,16 @@
                  "<b>true</b> (" + f3(S.x[i]) + ", " + f3(S.y[i]) + ", " + f3(wrap(S.theta[i])) + ")",
                  "<b>estimate</b> (" + f3(S.x_est[i]) + ", " + f3(S.y_est[i]) + ", " + f3(wrap(S.theta_est[i])) + ")",
                  "<b>wheels</b> " + f3(S.vel_r[i]) + " / " + f3(S.vel_l[i]) + " rad/s"];
-    if (S.ir0) { parts.push("<b>IR</b> " + [0, 1, 2, 3, 4].map(function (k) { return f3(S["ir" + k][i]); }).join(" ")); }
+    var irs = [];
+    for (var k = 0; S["ir" + k]; k++) { irs.push(f3(S["ir" + k][i])); }
+    if (irs.length) { parts.push("<b>IR</b> " + irs.join(" ")); }
+    SIGS.forEach(function (g) {             // the values that are not drawn: labels, counts, events that hold
+      var d = SD[g.name];
+      if (g.kind === "label") { var v = runAt(d, i); if (v) { parts.push("<b>" + escapeHtml(g.name) + "</b> " + escapeHtml(visible(v))); } }
+      if (g.kind === "count" && d[i] !== null) { parts.push("<b>" + escapeHtml(g.name) + "</b> " + d[i]); }
+      if (g.kind === "flag" && d[i] === 1) { parts.push("<b>" + escapeHtml(g.name) + "</b>"); }
+    });
+    if (D.ending && D.ending.message && i === N - 1) { parts.push("<span class=\"crash\">ended: " + escapeHtml(visible(D.ending.message)) + "</span>"); }
     if (D.collision && S.t[i] >= D.collision.t - 1e-9) { parts.push("<span class=\"crash\">collided at t = " + D.collision.t.toFixed(2) + " s</span>"); }
     statusEl.innerHTML = parts.join(" &nbsp; ");
   }
@@ -515,8 +599,14 @@
     "<span><i style=\"background:" + COLORS.body + "\"></i>robot (true pose)</span>" +
     "<span><i style=\"border-top:2px dashed #888;height:0\"></i>odometry estimate</span>" +
     "<span><i style=\"background:" + COLORS.heading + "\"></i>heading θ</span>" +
-    (hasValues(col("theta_g")) && !S.ux ? "<span><i style=\"background:" + COLORS.thetaG + "\"></i>θ_g</span>" : "") +
-    (hasValues(col("ux")) ? "<span><i style=\"background:" + COLORS.uao + "\"></i>u_ao</span><span>× IR points</span>" : "");
+    OVERLAYS.map(function (o, j) {
+      var mark = o.kind === "points" ? "<b>×</b> " : "<i style=\"background:" + o.color + "\"></i>";
+      return "<label><input type=\"checkbox\" data-overlay=\"" + j + "\"" + (o.on ? " checked" : "") + "> " +
+             mark + escapeHtml(visible(o.name)) + "</label>";
+    }).join("");
+  Array.prototype.forEach.call(document.querySelectorAll("#legend input[data-overlay]"), function (box) {
+    box.addEventListener("change", function () { OVERLAYS[parseInt(box.getAttribute("data-overlay"), 10)].on = box.checked; render(); });
+  });
 
   // ---------- the test / console API ----------
   window.simiam = {
@@ -533,6 +623,14 @@
     follow: function (on) { setFollowing(on === undefined ? true : on); render(); },
     setSpeed: function (v) { st.speed = v; speedSel.value = String(v); },
     worldToScreen: function (x, y) { var r = canvas.getBoundingClientRect(); return [r.left + sx(x), r.top + sy(y)]; },
+    stateColor: stateColor,
+    overlays: function () { return OVERLAYS.map(function (o) { return { name: o.name, kind: o.kind, on: o.on }; }); },
+    setOverlay: function (name, on) {
+      OVERLAYS.forEach(function (o, j) {
+        if (o.name === name) { o.on = on; document.querySelector("#legend input[data-overlay=\"" + j + "\"]").checked = on; }
+      });
+      render();
+    },
     trace: D
   };
 

@@ -1,0 +1,173 @@
+"""Plots of a trace's declared debug signals and of its states, for the report: by name, from the trace's
+own `signals` header, knowing no signal in advance (simiam.signals declares them; a trace says which it
+recorded and of what kind).
+
+A check asks for them in `Check.plots` (carried in its result's `plots`):
+- `"states"`: which controller ran when (a band per state run), with a row per label and event signal;
+- `"signals:d_prog,switches"`: those signals over time (numbers and counts as lines, an event as 0/1, a
+  vector as its x and y).
+Every label in these pictures is escaped; state names are the student's and are shown, never obeyed.
+"""
+
+from __future__ import annotations
+
+import zlib
+from collections.abc import Sequence
+from html import escape
+from typing import Any
+
+from markupsafe import Markup
+
+from grader.report.svg import BLUE, GREEN, ORANGE, RED, Chart, Series, _finite, _n
+from grader.untrusted import printable
+from simiam.signals import WEEKS_1_TO_4, declared, from_headers, headers
+
+STATE_COLORS = ("#5b8def", "#e0823d", "#43a047", "#ab47bc", "#ef5350", "#26a69a", "#8d6e63", "#546e7a")
+_SERIES = (BLUE, RED, GREEN, ORANGE, "#7a3db8", "#0f8b8d")
+_ROW, _LEFT, _NAMES = 18, 96, 12  # px per timeline row, px for the row labels, state names in the legend
+
+
+def declared_signals(trace: dict) -> list[dict]:
+    """The trace's signal header (name, kind, unit, size); a trace without one recorded weeks 1-4's five.
+    A malformed header gives no signals (the report still shows everything else)."""
+    raw = trace.get("signals")
+    try:
+        if raw is None:
+            n_ir = len((trace.get("robot") or {}).get("ir_mounts") or []) or 5
+            return headers(declared(WEEKS_1_TO_4), n_ir)
+        return from_headers(raw)
+    except ValueError:
+        return []
+
+
+def state_color(name: str) -> str:
+    """The colour of a state (or label) name: the same name, the same colour, on every page."""
+    return STATE_COLORS[zlib.crc32(name.encode("utf-8", "replace")) % len(STATE_COLORS)]
+
+
+def signals_svg(trace: dict, names: Sequence[str], title: str | None = None) -> Markup | None:
+    """The named signals over time, or None if the trace declares none of them with a value."""
+    found = {s["name"]: s for s in declared_signals(trace)}
+    steps = trace.get("steps") or {}
+    ts = list(steps.get("t") or [])
+    series: list[Series] = []
+    units = []
+    for name in names:
+        sig = found.get(name)
+        values = steps.get(name)
+        if sig is None or not isinstance(values, list) or not any(v is not None for v in values):
+            continue
+        colour = _SERIES[len(series) % len(_SERIES)]
+        if sig["kind"] in ("scalar", "count"):
+            series.append(Series(name, ts, [v if _finite(v) else None for v in values], colour))
+        elif sig["kind"] == "flag":
+            series.append(Series(name, ts, [None if v is None else float(v is True) for v in values], colour))
+        elif sig["kind"] == "vector2":
+            for axis, k in (("x", 0), ("y", 1)):
+                ys = [v[k] if isinstance(v, list) and len(v) == 2 and _finite(v[k]) else None for v in values]
+                series.append(Series(f"{name} {axis}", ts, ys, _SERIES[len(series) % len(_SERIES)],
+                                     dash="" if k == 0 else "6 4"))
+        else:
+            continue  # labels and points have no line: "states" shows labels; the replay draws points
+        if sig.get("unit"):
+            units.append(sig["unit"])
+    if not series:
+        return None
+    unit = f" ({units[0]})" if units and len(set(units)) == 1 else ""
+    return Chart(series, title=(title or ", ".join(dict.fromkeys(s.label.split()[0] for s in series))) + unit,
+                 x_label="t (s)").render()
+
+
+def _runs(values: list, n: int) -> list[tuple[int, int, str]]:
+    """(first row, last row, text) of each run of equal non-empty text."""
+    runs: list[tuple[int, int, str]] = []
+    for k in range(n):
+        v = values[k] if k < len(values) else None
+        text = v if isinstance(v, str) else ""
+        if runs and runs[-1][2] == text and runs[-1][1] == k - 1:
+            runs[-1] = (runs[-1][0], k, text)
+        else:
+            runs.append((k, k, text))
+    return [r for r in runs if r[2]]
+
+
+def states_svg(trace: dict, width: int = 460) -> Markup | None:
+    """Which controller ran when: a band per state run, then a row per label signal (its value's band)
+    and per event signal (marked where true). None for a trace without states."""
+    steps = trace.get("steps") or {}
+    ts = [t for t in steps.get("t") or [] if _finite(t)]
+    n = len(ts)
+    if n < 2:
+        return None
+    rows: list[tuple[str, Any]] = [("state", _runs(list(steps.get("state") or []), n))]
+    for sig in declared_signals(trace):
+        values = steps.get(sig["name"])
+        if isinstance(values, list) and any(v is not None for v in values):
+            if sig["kind"] == "label":
+                rows.append((sig["name"], _runs(values, n)))
+            elif sig["kind"] == "flag":
+                rows.append((sig["name"], [k for k in range(min(n, len(values))) if values[k] is True]))
+    if not rows[0][1] and len(rows) == 1:
+        return None
+    t0, t1 = ts[0], max(ts[-1], ts[0] + 1e-9)
+    mr, mt = 10, 22
+    legend_y = mt + _ROW * len(rows) + 18
+    height = legend_y + 20
+
+    def px(t: float) -> float:
+        return _LEFT + (t - t0) / (t1 - t0) * (width - _LEFT - mr)
+
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {width} {height}" width="{width}" '
+           f'height="{height}" role="img" class="plot states" font-family="system-ui, sans-serif" '
+           f'font-size="11"><title>states over time</title>'
+           f'<rect width="{width}" height="{height}" fill="#fff"/>'
+           f'<text x="{_LEFT}" y="14" font-weight="600">Which controller ran when</text>']
+    names: dict[str, str] = {}
+    for r, (label, marks) in enumerate(rows):
+        y = mt + _ROW * r
+        out.append(f'<text x="{_LEFT - 6}" y="{y + 12}" text-anchor="end" fill="#3a4450">'
+                   f'{escape(printable(label)[:16])}</text>')
+        for mark in marks:
+            if isinstance(mark, tuple):
+                k0, k1, text = mark
+                x0, x1 = px(ts[k0]), px(ts[min(k1 + 1, n - 1)])
+                colour = state_color(text)
+                names.setdefault(text, colour)
+                shown = escape(printable(text)[:40])
+                out.append(f'<rect x="{_n(x0)}" y="{y + 1}" width="{_n(max(1.0, x1 - x0))}" height="14" '
+                           f'fill="{colour}"><title>{shown}: {ts[k0]:.2f} to {ts[min(k1 + 1, n - 1)]:.2f} s'
+                           f'</title></rect>')
+            else:
+                x0 = px(ts[mark])
+                x1 = px(ts[min(mark + 1, n - 1)])
+                out.append(f'<rect x="{_n(x0)}" y="{y + 4}" width="{_n(max(1.0, x1 - x0))}" height="8" '
+                           f'fill="#1d2530"/>')
+    out.append(f'<text x="{_LEFT}" y="{legend_y - 4}" fill="#555">{ts[0]:.0f} s</text>'
+               f'<text x="{width - mr}" y="{legend_y - 4}" text-anchor="end" fill="#555">'
+               f'{ts[-1]:.1f} s</text>')
+    lx = 6.0
+    for text, colour in list(names.items())[:_NAMES]:
+        shown = printable(text)[:24]
+        out.append(f'<rect x="{_n(lx)}" y="{legend_y + 4}" width="10" height="10" fill="{colour}"/>'
+                   f'<text x="{_n(lx + 14)}" y="{legend_y + 13}">{escape(shown)}</text>')
+        lx += 26 + 6.5 * len(shown)
+    out.append("</svg>")
+    return Markup("".join(out))
+
+
+def declared_plots(wanted: object, trace: dict) -> list[Markup]:
+    """The plots of the declared signals and states that a check asked for (its result's `plots`, from
+    Check.plots), drawn from `trace`: "states", and "signals:NAME,NAME" for those signals. An entry the
+    report does not know, or a signal the trace lacks, draws nothing."""
+    if not isinstance(wanted, list):
+        return []
+    out = []
+    for entry in wanted[:8]:
+        picture = None
+        if entry == "states":
+            picture = states_svg(trace)
+        elif isinstance(entry, str) and entry.startswith("signals:"):
+            picture = signals_svg(trace, [n for n in entry[len("signals:"):].split(",") if n][:12])
+        if picture is not None:
+            out.append(picture)
+    return out

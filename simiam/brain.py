@@ -1,0 +1,95 @@
+"""Seam 1, typed: what a Brain reads each step, what it answers, and the one place that answer is checked.
+
+A Brain is anything with `step(readings) -> command`: the student's supervisor in this process
+(`simiam.control.local_brain.LocalBrain`), the same behind the sandbox's pipe (`RemoteBrain`), or a
+trusted test double. Only plain values cross: `Readings` in, `Command` out. The simulator passes every
+command through `validate_command` before it uses any of it, whoever the brain is.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Protocol, TypedDict
+
+from simiam.robot.quickbot import IR_MOUNTS
+from simiam.signals import WEEKS_1_TO_4, Plan, Signal, clean_debug, declared, real
+
+STATE_CHARS = 80  # a state name (a student picks it; it is shown in the replay, the report and the terminal)
+
+
+class Readings(TypedDict):
+    """One step's sensor values: simulated time `t` and step `dt` (s), cumulative encoder `ticks`
+    [right, left], and `ir_raw`, one raw ADC value per IR sensor (as many as the robot spec mounts)."""
+
+    t: float
+    dt: float
+    ticks: list[int]
+    ir_raw: list[int]
+
+
+class Command(TypedDict):
+    """One step's answer: wheel speeds `vel_r`, `vel_l` (rad/s, before the robot's limits), the brain's
+    own pose `estimate` [x, y, theta] or None, the running controller's `state` name or None, and
+    `debug`: the declared signals (simiam.signals), only ever plotted."""
+
+    vel_r: float
+    vel_l: float
+    estimate: list[float] | None
+    state: str | None
+    debug: dict[str, Any]
+
+
+class Brain(Protocol):
+    """What drives the robot: plain readings in, a plain command out. The answer is typed `Any` on
+    purpose: whatever a brain returns is checked by `validate_command` before anything uses it."""
+
+    def step(self, readings: Readings) -> Any: ...
+
+
+class BrainError(Exception):
+    """The brain returned something that is not a valid command."""
+
+
+class ConstantBrain:
+    """A trusted brain that requests the same wheel speeds every step (tests, benchmarks)."""
+
+    def __init__(self, vel_r: float, vel_l: float) -> None:
+        self.vel_r = vel_r
+        self.vel_l = vel_l
+
+    def step(self, readings: Readings) -> Command:
+        return {"vel_r": self.vel_r, "vel_l": self.vel_l, "estimate": None, "state": "constant", "debug": {}}
+
+
+_DEFAULT = declared(WEEKS_1_TO_4)
+
+
+def validate_command(command: Any, signals: tuple[Signal, ...] = _DEFAULT, n_ir: int = len(IR_MOUNTS),
+                     plan: Plan | None = None) -> Command:
+    """Check and normalise a brain's command; raises BrainError with a readable message.
+
+    vel_r / vel_l must be finite real numbers (bool is rejected); estimate is None or three finite numbers;
+    state a string (or None), cut to STATE_CHARS. Debug values go through simiam.signals.clean_debug:
+    every declared signal is present, a missing or malformed one is None, unknown names are dropped.
+    `n_ir` (the robot's IR sensor count) sizes the points signals; the defaults are weeks 1-4's. The
+    simulator passes `plan` (simiam.signals.debug_plan) worked out once per run.
+    """
+    if not isinstance(command, dict):
+        raise BrainError(f"the command must be a dict, got {type(command).__name__}")
+    out: dict = {}
+    for key in ("vel_r", "vel_l"):
+        val = command.get(key)
+        if not real(val):
+            raise BrainError(f"{key} must be a finite number (rad/s), got {val!r:.60}")
+        out[key] = float(val)
+    est = command.get("estimate")
+    if est is not None:
+        if not (isinstance(est, (list, tuple)) and len(est) == 3 and all(real(c) for c in est)):
+            raise BrainError(f"estimate must be three finite numbers (x, y, theta), got {est!r:.80}")
+        est = [float(c) for c in est]
+    out["estimate"] = est
+    state = command.get("state")
+    if state is not None and not isinstance(state, str):
+        raise BrainError(f"state must be a string, got {type(state).__name__}")
+    out["state"] = None if state is None else state[:STATE_CHARS]
+    out["debug"] = clean_debug(command.get("debug"), signals, n_ir, plan)
+    return out  # type: ignore[return-value]

@@ -1,0 +1,94 @@
+"""The report's plots of declared signals and states (grader/report/signal_plots.py): drawn by name from
+the trace's own header, none known in advance; student state names escaped; a check asks for them in
+`Check.plots`."""
+
+from __future__ import annotations
+
+import importlib.util
+import re
+from pathlib import Path
+from xml.etree import ElementTree
+
+import pytest
+
+from grader.report.html import render_report
+from grader.report.signal_plots import declared_plots, signals_svg, state_color, states_svg
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+EVIL_STATE = "<script>window.pwned=1</script>"
+
+
+def _module(name: str, path: Path):
+    spec = importlib.util.spec_from_file_location(name, path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+SWITCHING = _module("simiam_test_switching_r", DATA / "traces/switching.py")
+
+
+@pytest.fixture(scope="module")
+def trace():
+    return SWITCHING.switching_trace()
+
+
+def _band_colours(svg: str) -> list[tuple[float, str]]:
+    band = r'<rect x="([\d.]+)" y="23" width="[\d.]+" height="14" fill="(#[0-9a-f]{6})"'
+    return [(float(x), fill) for x, fill in re.findall(band, svg)]
+
+
+def test_the_state_timeline_shows_each_state_and_the_label_and_event_rows(trace):
+    svg = str(states_svg(trace))
+    ElementTree.fromstring(svg)
+    bands = _band_colours(svg)  # the state row: one band per run, left to right
+    assert [fill for _, fill in bands] == [state_color(s) for s in ("go_to_goal", "follow_wall", "stop")]
+    assert bands[0][0] < bands[1][0] < bands[2][0]
+    assert ">fw_direction<" in svg and ">at_goal<" in svg and "follow_wall: 1.00 to 2.00 s" in svg
+
+
+def test_signals_are_plotted_by_name(trace):
+    svg = str(signals_svg(trace, ["d_prog", "switches", "u_gtg", "no_such_signal"]))
+    ElementTree.fromstring(svg)
+    for label in ("d_prog", "switches", "u_gtg x", "u_gtg y"):
+        assert f">{label}</text>" in svg
+    assert signals_svg(trace, ["no_such_signal", "fw_direction"]) is None  # nothing with a line to draw
+    old = _module("simiam_test_synthetic_sp", DATA / "traces/synthetic.py").load("week4_wander.json")
+    assert "signals" not in old and ">v</text>" in str(signals_svg(old, ["v", "w"]))  # an old trace
+
+
+def _hostile_trace():
+    return SWITCHING.switching_trace(("go_to_goal", EVIL_STATE, "stop"))
+
+
+def test_student_state_names_stay_text():
+    svg = str(states_svg(_hostile_trace()))
+    ElementTree.fromstring(svg)
+    assert "<script>" not in svg and "&lt;script&gt;" in svg
+
+
+def test_a_timeline_that_pastes_names_is_caught():
+    wrong = _module("report_wrong_states", DATA / "report_wrong/states_unescaped.py")
+    svg = str(wrong.states_svg(_hostile_trace()))
+    assert "<script>" in svg
+    with pytest.raises(ElementTree.ParseError):
+        ElementTree.fromstring(svg)
+
+
+def test_a_check_declares_the_plots_of_its_runs(trace):
+    plots = ["trajectory", "states", "signals:d_prog", "no_such_plot", "signals:nothing"]
+    assert len(declared_plots(plots, trace)) == 2
+    result = {"week": 5, "score": 1.0, "max_score": 1.0, "status": "graded", "submission": "alice",
+              "checks": [{"id": "week5.switching", "name": "switching", "kind": "scenario",
+                          "status": "passed", "points": 1.0, "max_points": 1.0, "message": "",
+                          "plots": plots, "details": {"traces": ["week5.switching"]}}]}
+    html = render_report(result, {"week5.switching": trace}, replays="none")
+    assert "Which controller ran when" in html and "d_prog (m)" in html and "trajectory" in html
+
+
+def test_checks_may_declare_state_and_signal_plots_and_nothing_else():
+    from grader.checks import Check
+
+    Check("week5.x", "x", "scenario", 1.0, lambda ctx: None, plots=("trajectory", "states", "signals:d_prog"))
+    with pytest.raises(ValueError, match="unknown plots"):
+        Check("week5.x", "x", "scenario", 1.0, lambda ctx: None, plots=("state",))
