@@ -44,6 +44,7 @@ WEEK = Week(
     blocks=BLOCKS,
     settings=SupervisorSettings(v=0.15, goal=(1.0, 1.0), d_stop=0.05, state="ao_and_gtg"),
     seconds=60.0,
-    debug_signals=("v", "w", "theta_g", "u_ao", "ir_points_wf", "u_gtg", "u_ao_gtg"),
+    debug_signals=("v", "w", "theta_g", "u_ao", "ir_points_wf", "u_gtg", "u_ao_gtg", "switches", "at_goal",
+                   "at_obstacle", "unsafe", "obstacle_cleared"),
     summary=("goal",),
 )
