@@ -1,6 +1,7 @@
 """FollowWall: drive along a wall at the distance d_fw, with the wall on the left or on the right.
 
-Two IR points on the wall estimate it as a line: p_1 and p_2, the points of the two sensors on the chosen
+The IR points in the world frame come from the provided apply_sensor_geometry (week 4's, shipped here so
+that a week-4 mistake does not move this week's robot). Two IR points on the wall estimate it as a line: p_1 and p_2, the points of the two sensors on the chosen
 side that measure the shortest distances (sensors 1, 2, 3 for the left, 5, 4, 3 for the right; index 0..4
 here). Along the wall: u_fw_t = p_2 - p_1, and its unit vector u_fw_tp. Toward the wall: u_fw_p, the
 vector from the robot (u_p) to the nearest point of that line (through u_a = p_1); its length is the
@@ -23,15 +24,9 @@ import numpy as np
 
 from simiam.control import Controller, norm
 
-from .avoid_obstacles import AvoidObstacles
-
 
 class FollowWall(Controller):
     """Steers along u_fw: the wall on the side inputs.direction ("left" or "right"), at inputs.d_fw."""
-
-    # The IR points in the world frame come from the week-4 geometry, as in AvoidObstacles.
-    apply_sensor_geometry = AvoidObstacles.apply_sensor_geometry
-    get_transformation_matrix = AvoidObstacles.get_transformation_matrix
 
     def __init__(self):
         super().__init__("follow_wall")
@@ -60,8 +55,7 @@ class FollowWall(Controller):
 
         # the five IR distances, and the points they measure (columns, homogeneous coordinates)
         ir_distances = robot.get_ir_distances()
-        ir_distances_rf, ir_distances_wf = self.apply_sensor_geometry(robot, ir_distances, state_estimate)
-        ir_distances_wf = np.asarray(ir_distances_wf)
+        ir_distances_wf = self.apply_sensor_geometry(robot, ir_distances, state_estimate)
 
         direction = inputs.direction  # "left" or "right" ("" counts as left, as in the original)
         d_fw = inputs.d_fw
@@ -121,3 +115,24 @@ class FollowWall(Controller):
         self.u_fw_p, self.u_fw_pp, self.u_fw = u_fw_p, u_fw_pp, u_fw
         self.ir_distances_wf = ir_distances_wf
         return inputs.v, w
+
+    def apply_sensor_geometry(self, robot, ir_distances, state_estimate):
+        """The IR points in the world frame: a 3x5 array, one column (x, y, 1) a sensor (as in week 4)."""
+        # sensor frame -> robot frame, with each sensor's mount pose (x_s, y_s, theta_s)
+        ir_distances_rf = np.zeros((3, 5))
+        for i in range(5):
+            x_s, y_s, theta_s = robot.ir_array[i].location.unpack()
+            T = self.get_transformation_matrix(x_s, y_s, theta_s)
+            ir_distances_rf[:, i] = T @ np.array([ir_distances[i], 0.0, 1.0])
+
+        # robot frame -> world frame, with the estimated pose of the robot
+        x, y, theta = state_estimate.unpack()
+        return self.get_transformation_matrix(x, y, theta) @ ir_distances_rf
+
+    def get_transformation_matrix(self, x, y, theta):
+        """T(x, y, theta): rotate by theta, then translate by (x, y) (3x3, homogeneous coordinates)."""
+        return np.array([
+            [math.cos(theta), -math.sin(theta), x],
+            [math.sin(theta), math.cos(theta), y],
+            [0.0, 0.0, 1.0],
+        ])
