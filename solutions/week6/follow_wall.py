@@ -1,12 +1,13 @@
 """FollowWall: drive along a wall at the distance d_fw, with the wall on the left or on the right.
 
 The IR points in the world frame come from the provided apply_sensor_geometry (week 4's, shipped here so
-that a week-4 mistake does not move this week's robot). Two IR points on the wall estimate it as a line: p_1 and p_2, the points of the two sensors on the chosen
-side that measure the shortest distances (sensors 1, 2, 3 for the left, 5, 4, 3 for the right; index 0..4
-here). Along the wall: u_fw_t = p_2 - p_1, and its unit vector u_fw_tp. Toward the wall: u_fw_p, the
-vector from the robot (u_p) to the nearest point of that line (through u_a = p_1); its length is the
-distance to the wall. u_fw_pp = u_fw_p - d_fw * u_fw_p/|u_fw_p| points toward the point d_fw from the wall
-(it is zero at distance d_fw). The robot steers along u_fw = d_fw * u_fw_tp + u_fw_pp.
+that a week-4 mistake does not move this week's robot). Two IR points on the wall estimate it as a line:
+p_1 and p_2, the points of the two sensors on the chosen side that measure the shortest distances
+(sensors 1, 2, 3 for the left, 5, 4, 3 for the right; index 0..4 here). Along the wall: u_fw_t = p_2 - p_1,
+and its unit vector u_fw_tp. Toward the wall: u_fw_p, the vector from the robot (u_p) to the nearest point
+of that line (through u_a = p_1); its length is the distance to the wall.
+u_fw_pp = u_fw_p - d_fw * u_fw_p/|u_fw_p| points toward the point d_fw from the wall (it is zero at
+distance d_fw). The robot steers along u_fw = d_fw * u_fw_tp + u_fw_pp.
 
 Student block (week 6) and the placeholders the stub gets:
   execute: p_1, p_2 (the two wall points), u_fw_t, u_fw_tp, u_a, u_p, u_fw_p, u_fw_pp, u_fw.
