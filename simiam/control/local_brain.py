@@ -28,7 +28,8 @@ class LocalBrain:
     `d_at_obs`, `d_unsafe`, `is_blending`, week 6's `d_fw`, `fw_direction`), the initial `state` (a
     controller name such as "go_to_goal"), and controller gains as
     `{"gains": {"go_to_goal": {"Kp": 4, "Ki": 0.01, "Kd": 0.01}}}` (a top-level
-    `{"go_to_goal": {...}}` is accepted too). `start` is where the estimate starts (default: the week's).
+    `{"go_to_goal": {...}}` is accepted too). `start` is where the estimate starts (default: the week's);
+    the setting `estimate` (x, y, theta) moves it there too, as the original's week-6 tests set it.
     The debug values are the week's declared signals (`week.debug_signals`, else weeks 1-4's), read from
     the supervisor and its current controller by simiam.signals.read_signals.
     """
@@ -60,6 +61,12 @@ class LocalBrain:
                 setattr(sup.controllers[name], gain, value)
         if settings.get("state"):
             sup.switch_to_state(settings["state"])
+        if settings.get("estimate") is not None:
+            pose = settings["estimate"]
+            if not (isinstance(pose, (list, tuple)) and len(pose) == 3
+                    and all(isinstance(c, (int, float)) and math.isfinite(c) for c in pose)):
+                raise ValueError(f"the setting estimate must be three finite numbers (x, y, theta), got {pose!r}")
+            sup.state_estimate.set_pose(tuple(float(c) for c in pose))
 
     def step(self, readings: Mapping[str, Any]) -> dict[str, Any]:
         """Feed one step's readings to the robot, run the supervisor once, return the command

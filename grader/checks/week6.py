@@ -1,0 +1,502 @@
+"""Week 6 checks: FollowWall's wall points and vectors (probed with chosen IR distances), the supervisor's
+d_fw and fw_direction, and laps around the L-shaped obstacle on either side (hidden: other sides, start
+headings and distances d_fw, each checked with the reference solution when the set was made).
+
+The vector checks start from the student's own earlier results (u_fw_tp from their p_1 and p_2, u_fw_p from
+their u_fw_tp, ...), so one mistake costs its own check, not every later one. The IR points come from
+FollowWall's provided geometry and the runs from the provided supervisor code, so a mistake of an earlier
+week (odometry aside) does not move this week's robot.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from typing import Any
+
+from grader import laps, scenarios
+from grader.checks import Check, Context, Mismatch, Outcome
+from grader.checks.answers import describe, fmt, number
+from grader.domains import Floats, Lists, SampledFrom
+from grader.properties import run_property
+from simiam.world import load_world
+
+FW = ("follow_wall.py",)
+SUPERVISOR = ("qb_supervisor.py",)
+ALL = (
+    "differential_drive.py",
+    "quickbot.py",
+    "go_to_angle.py",
+    "go_to_goal.py",
+    "avoid_obstacles.py",
+    "ao_and_gtg.py",
+    "follow_wall.py",
+    "qb_supervisor.py",
+)
+V = 0.15  # the original test's speed
+SECONDS = 90.0  # the original test's length
+LAPS = 2  # the original test: back at the start twice and off again
+SETTLE = 10.0  # s: the distance to the wall is judged after the robot found the wall
+DISTANCE_TOL = 0.05  # m: the median distance to the obstacle may differ this much from d_fw
+# The gate: from the L's lower block (y = 0.2) straight down to the bottom wall (y = -1.4), through the
+# start (0, 0). Following the wall on the left the robot drives around the L anticlockwise, so it crosses
+# the gate toward +x; on the right clockwise, toward -x.
+GATE_X, GATE_Y = 0.0, (-1.4, 0.2)
+IR_RANGE = (0.04, 0.3)
+LAP_HINT = (
+    "Hint: the checks of p_1/p_2, u_fw_tp, u_fw_p, u_fw_pp and u_fw say which part is wrong; if they all "
+    "pass, try d_fw between 0.15 and 0.2 m (replay the run in the report)"
+)
+
+_distance = Floats(*IR_RANGE)
+_coord = Floats(-1.0, 1.0)
+_angle = Floats(-math.pi, math.pi)
+_direction = SampledFrom(["left", "right"])
+_d_fw = Floats(0.1, 0.25)
+LEFT, RIGHT = (0, 1, 2), (4, 3, 2)
+
+
+def gate(direction: str) -> laps.Gate:
+    """The lap gate, crossed toward +x when following the wall on the left, toward -x on the right."""
+    return laps.Gate(GATE_X, GATE_Y[0], GATE_Y[1], -1 if direction == "right" else 1)
+
+
+def wall_pairs(distances: list[float], direction: str) -> list[tuple[int, int]]:
+    """Every (i_1, i_2) a correct FollowWall may pick: two sensors of the side whose distances are the two
+    smallest there (any of them on a tie), ordered so that p_1 -> p_2 runs the way the robot drives (left:
+    the lower index first; right: the higher)."""
+    side = RIGHT if direction == "right" else LEFT
+    smallest = sorted(distances[i] for i in side)[:2]
+    pairs = []
+    for a in side:
+        for b in side:
+            if a < b and sorted((distances[a], distances[b])) == smallest:
+                pairs.append((b, a) if direction == "right" else (a, b))
+    return pairs
+
+
+def _pair(value: Any, what: str) -> tuple[float, float]:
+    """A 2-vector from a student answer: [x, y], a column [[x], [y]], or (x, y, 1) taken from the 3x5
+    homogeneous points (only x and y count)."""
+    if isinstance(value, list) and all(isinstance(v, list) and len(v) == 1 for v in value):
+        value = [v[0] for v in value]
+    if not isinstance(value, list) or len(value) not in (2, 3):
+        raise Mismatch(f"{what} was {describe(value)}, expected a vector (x, y)")
+    return number(value[0], f"{what} (x)"), number(value[1], f"{what} (y)")
+
+
+def _words(distances: list[float], pose: list[float], direction: str, d_fw: float | None = None) -> str:
+    text = (
+        f"with direction {direction!r}, IR distances {', '.join(fmt(d) for d in distances)} and the robot "
+        f"at ({fmt(pose[0])}, {fmt(pose[1])}, {fmt(pose[2])})"
+    )
+    return text + (f", d_fw = {fmt(d_fw)}" if d_fw is not None else "")
+
+
+def _follow_once(ctx: Context, distances: list, pose: list, direction: str, d_fw: float) -> dict:
+    answer = ctx.probe("follow_wall", distances=distances, pose=pose, direction=direction, d_fw=d_fw, v=V)
+    if not isinstance(answer, dict):
+        raise Mismatch("FollowWall.execute gave no answer")
+    return answer
+
+
+def _points(answer: dict, where: str) -> list[tuple[float, float]]:
+    wf = answer.get("ir_distances_wf")
+    if not (
+        isinstance(wf, list) and len(wf) >= 2 and all(isinstance(r, list) and len(r) == 5 for r in wf[:2])
+    ):
+        raise Mismatch(f"{where} the IR points ir_distances_wf were {describe(wf)}, expected 3x5")
+    return [(number(wf[0][i], "ir_distances_wf"), number(wf[1][i], "ir_distances_wf")) for i in range(5)]
+
+
+def _which(point: tuple[float, float], points: list[tuple[float, float]]) -> int | None:
+    for i, q in enumerate(points):
+        if math.dist(point, q) < 1e-9:
+            return i
+    return None
+
+
+def sensors(ctx: Context) -> Outcome:
+    """p_1 and p_2 are the IR points of the two closest sensors on the chosen side, in driving order."""
+
+    def case(ctx: Context, distances: list, theta: float, direction: str) -> None:
+        pose = [0.2, -0.3, theta]
+        answer = _follow_once(ctx, distances, pose, direction, 0.15)
+        where = _words(distances, pose, direction)
+        points = _points(answer, where)
+        got = []
+        for name in ("p_1", "p_2"):
+            p = _pair(answer.get(name), f"{where} your {name}")
+            i = _which(p, points)
+            if i is None:
+                raise Mismatch(
+                    f"{where} your {name} ({fmt(p[0])}, {fmt(p[1])}) is none of the five IR "
+                    "points: take a column of ir_distances_wf (its x and y)"
+                )
+            got.append(i)
+        allowed = wall_pairs(distances, direction)
+        if tuple(got) not in allowed:
+            side = "4, 3, 2" if direction == "right" else "0, 1, 2"
+            order = "the higher index first" if direction == "right" else "the lower index first"
+            want = " or ".join(f"sensors {a} and {b}" for a, b in allowed)
+            raise Mismatch(
+                f"{where} p_1 and p_2 were the points of sensors {got[0]} and {got[1]} (0..4), "
+                f"expected {want}: the two closest of sensors {side}, {order}"
+            )
+
+    examples = [
+        {"distances": [0.1, 0.15, 0.3, 0.3, 0.3], "theta": 0.0, "direction": "left"},
+        {"distances": [0.3, 0.3, 0.3, 0.15, 0.1], "theta": 0.0, "direction": "right"},
+        {"distances": [0.3, 0.3, 0.2, 0.12, 0.25], "theta": 1.0, "direction": "right"},
+        {"distances": [0.25, 0.12, 0.2, 0.3, 0.3], "theta": -2.0, "direction": "left"},
+        {"distances": [0.1, 0.1, 0.1, 0.1, 0.1], "theta": 0.5, "direction": "right"},
+    ]
+    return run_property(
+        ctx,
+        "week6.follow_wall.sensors",
+        {"distances": Lists(_distance, min_size=5, max_size=5), "theta": _angle, "direction": _direction},
+        case,
+        examples=examples,
+        passed="p_1 and p_2 are the two closest IR points on the chosen side, in driving order",
+    )
+
+
+def _vectors_check(check_id: str, judge, passed: str):
+    """A property over FollowWall's vectors: `judge(answer, where, pose, d_fw)` raises Mismatch."""
+
+    def case(
+        ctx: Context, distances: list, x: float, y: float, theta: float, direction: str, d_fw: float
+    ) -> None:
+        pose = [x, y, theta]
+        answer = _follow_once(ctx, distances, pose, direction, d_fw)
+        judge(answer, _words(distances, pose, direction, d_fw), pose, d_fw)
+
+    examples = [
+        {
+            "distances": [0.1, 0.15, 0.3, 0.3, 0.3],
+            "x": 0.0,
+            "y": 0.0,
+            "theta": 0.0,
+            "direction": "left",
+            "d_fw": 0.15,
+        },
+        {
+            "distances": [0.3, 0.3, 0.3, 0.2, 0.12],
+            "x": 0.5,
+            "y": -0.5,
+            "theta": 2.0,
+            "direction": "right",
+            "d_fw": 0.18,
+        },
+    ]
+
+    def run(ctx: Context) -> Outcome:
+        return run_property(
+            ctx,
+            check_id,
+            {
+                "distances": Lists(_distance, min_size=5, max_size=5),
+                "x": _coord,
+                "y": _coord,
+                "theta": _angle,
+                "direction": _direction,
+                "d_fw": _d_fw,
+            },
+            case,
+            examples=examples,
+            passed=passed,
+        )
+
+    run.__name__ = check_id.rsplit(".", 1)[-1]
+    return run
+
+
+def _close(a: tuple[float, float], b: tuple[float, float], tol: float = 1e-6) -> bool:
+    return math.dist(a, b) <= tol * max(1.0, math.hypot(*b))
+
+
+def _v(a: tuple[float, float]) -> str:
+    return f"({fmt(a[0])}, {fmt(a[1])})"
+
+
+def _tangent(answer: dict, where: str, pose: list, d_fw: float) -> None:
+    p_1 = _pair(answer.get("p_1"), f"{where} your p_1")
+    p_2 = _pair(answer.get("p_2"), f"{where} your p_2")
+    t = _pair(answer.get("u_fw_t"), f"{where} your u_fw_t")
+    tp = _pair(answer.get("u_fw_tp"), f"{where} your u_fw_tp")
+    want_t = (p_2[0] - p_1[0], p_2[1] - p_1[1])
+    if not _close(t, want_t):
+        raise Mismatch(f"{where} your u_fw_t was {_v(t)}, expected p_2 - p_1 = {_v(want_t)} (along the wall)")
+    n = math.hypot(*t)
+    if n == 0:
+        return  # both points coincide: there is no wall direction to check
+    want = (t[0] / n, t[1] / n)
+    if abs(math.hypot(*tp) - 1) > 1e-6:
+        raise Mismatch(
+            f"{where} your u_fw_tp was {_v(tp)}, of length {fmt(math.hypot(*tp))}: expected a unit "
+            f"vector, u_fw_t / |u_fw_t| = {_v(want)}"
+        )
+    if not _close(tp, want):
+        raise Mismatch(
+            f"{where} your u_fw_tp was {_v(tp)}, expected u_fw_t / |u_fw_t| = {_v(want)} (the same "
+            "direction as u_fw_t)"
+        )
+
+
+def _foot(answer: dict, where: str, pose: list) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The student's u_fw_tp and the vector from the robot to the nearest point of the line through their
+    p_1 along their u_fw_tp."""
+    p_1 = _pair(answer.get("p_1"), f"{where} your p_1")
+    tp = _pair(answer.get("u_fw_tp"), f"{where} your u_fw_tp")
+    a = (p_1[0] - pose[0], p_1[1] - pose[1])
+    along = a[0] * tp[0] + a[1] * tp[1]
+    return tp, (a[0] - along * tp[0], a[1] - along * tp[1])
+
+
+def _perpendicular(answer: dict, where: str, pose: list, d_fw: float) -> None:
+    tp, want = _foot(answer, where, pose)
+    p = _pair(answer.get("u_fw_p"), f"{where} your u_fw_p")
+    if abs(math.hypot(*tp) - 1) > 1e-6:
+        return  # u_fw_tp is not a unit vector: its own check says so; the projection would not hold
+    if abs(p[0] * tp[0] + p[1] * tp[1]) > 1e-6 * max(1.0, math.hypot(*p)):
+        raise Mismatch(
+            f"{where} your u_fw_p {_v(p)} is not perpendicular to your u_fw_tp {_v(tp)} (their dot "
+            f"product is {fmt(p[0] * tp[0] + p[1] * tp[1])}): expected (u_a - u_p) - "
+            f"((u_a - u_p) . u_fw_tp) u_fw_tp = {_v(want)}"
+        )
+    if not _close(p, want):
+        raise Mismatch(
+            f"{where} your u_fw_p was {_v(p)} (length {fmt(math.hypot(*p))}), expected the vector "
+            f"from the robot to the nearest point of the wall's line, {_v(want)} (length "
+            f"{fmt(math.hypot(*want))}, the distance to the wall): (u_a - u_p) - ((u_a - u_p) . "
+            "u_fw_tp) u_fw_tp with u_a = p_1 and u_p = (x, y)"
+        )
+
+
+def _distance_part(answer: dict, where: str, pose: list, d_fw: float) -> None:
+    p = _pair(answer.get("u_fw_p"), f"{where} your u_fw_p")
+    pp = _pair(answer.get("u_fw_pp"), f"{where} your u_fw_pp")
+    n = math.hypot(*p)
+    if n == 0:
+        return
+    want = (p[0] - d_fw * p[0] / n, p[1] - d_fw * p[1] / n)
+    if not _close(pp, want):
+        raise Mismatch(
+            f"{where} your u_fw_p was {_v(p)} (the robot {fmt(n)} m from the wall) and your u_fw_pp "
+            f"{_v(pp)}, expected u_fw_p - d_fw * u_fw_p / |u_fw_p| = {_v(want)}: toward the point "
+            "d_fw from the wall, zero when the robot is at d_fw"
+        )
+
+
+def _u_fw(answer: dict, where: str, pose: list, d_fw: float) -> None:
+    tp = _pair(answer.get("u_fw_tp"), f"{where} your u_fw_tp")
+    pp = _pair(answer.get("u_fw_pp"), f"{where} your u_fw_pp")
+    u = _pair(answer.get("u_fw"), f"{where} your u_fw")
+    want = (d_fw * tp[0] + pp[0], d_fw * tp[1] + pp[1])
+    if not _close(u, want):
+        raise Mismatch(f"{where} your u_fw was {_v(u)}, expected d_fw * u_fw_tp + u_fw_pp = {_v(want)}")
+
+
+def settings(ctx: Context) -> Outcome:
+    """QBSupervisor.__init__ sets fw_direction to a side and d_fw to a distance the IR sensors can see."""
+    answer = ctx.probe("wall_settings")
+    if not isinstance(answer, dict):
+        raise Mismatch("QBSupervisor gave no settings")
+    direction = answer.get("fw_direction")
+    if direction not in ("left", "right"):
+        return Outcome(0.0, f"your fw_direction was {describe(direction)}, expected 'left' or 'right'")
+    d_fw = number(answer.get("d_fw"), "your d_fw")
+    if not IR_RANGE[0] < d_fw < IR_RANGE[1]:
+        return Outcome(
+            0.0,
+            f"your d_fw was {fmt(d_fw)} m: the IR sensors see from {IR_RANGE[0]} to {IR_RANGE[1]} "
+            "m, so the wall can only be followed at a distance in between (0.15 to 0.2 m work)",
+            {"d_fw": d_fw},
+        )
+    return Outcome(1.0, f"fw_direction {direction!r}, d_fw {fmt(d_fw)} m", {"d_fw": d_fw})
+
+
+def _laps(
+    ctx: Context, check_id: str, direction: str, theta0: float, d_fw: float | None, label: str
+) -> tuple[bool, str, dict, scenarios.Run]:
+    """One run of the original test 6.x: v, direction and the start heading (true pose and estimate) set,
+    d_fw the student's own (None) or the variant's; 90 s; two laps through the gate, no collision in the
+    whole run, the median distance to the obstacle after the first 10 s within DISTANCE_TOL of d_fw."""
+    if d_fw is None:
+        answer = ctx.probe("wall_settings")
+        d_fw = number(answer.get("d_fw") if isinstance(answer, dict) else None, "your d_fw")
+        settings = {"v": V, "fw_direction": direction, "estimate": [0.0, 0.0, theta0], "state": "follow_wall"}
+    else:
+        settings = {
+            "v": V,
+            "fw_direction": direction,
+            "d_fw": d_fw,
+            "estimate": [0.0, 0.0, theta0],
+            "state": "follow_wall",
+        }
+    world = load_world(ctx.config.world)
+    r = scenarios.run(ctx, label, settings, SECONDS, world=world, start=(0.0, 0.0, theta0))
+    scenarios.keep(ctx, check_id, r)
+    xs, ys = r.trace.steps["x"], r.trace.steps["y"]
+    counted = laps.laps(xs, ys, gate(direction))
+    done = max(counted)
+    first = int(round(SETTLE / ctx.config.dt))
+    median = laps.median_distance(xs[first:], ys[first:], world.obstacles[:2]) if len(xs) > first else None
+    details = {
+        **r.metrics,
+        "laps": done,
+        "d_fw": d_fw,
+        "median_distance": median,
+        "problem": r.problem,
+        "traces": scenarios.trace_keys([r]),
+    }
+    t = r.trace.steps["t"][counted.index(done)]
+    if r.problem:
+        return False, r.problem, details, r
+    if r.collision is not None:
+        return False, f"touched an obstacle at t = {r.collision['t']:.2f} s. {LAP_HINT}", details, r
+    if done < LAPS:
+        return (
+            False,
+            (
+                f"drove {max(done, 0)} lap(s) around the obstacle in {SECONDS:g} s ({LAPS} "
+                f"expected). {LAP_HINT}"
+            ),
+            details,
+            r,
+        )
+    if median is None or abs(median - d_fw) > DISTANCE_TOL:
+        shown = "no" if median is None else f"a median distance of {fmt(median)} m"
+        return (
+            False,
+            (
+                f"{LAPS} laps in {t:.1f} s, but kept {shown} from the obstacle, not about d_fw = "
+                f"{fmt(d_fw)} m (within {DISTANCE_TOL} m). {LAP_HINT}"
+            ),
+            details,
+            r,
+        )
+    return (
+        True,
+        f"{LAPS} laps in {t:.1f} s, no collision in {SECONDS:g} s, about {fmt(median)} m from the obstacle",
+        details,
+        r,
+    )
+
+
+def _visible(direction: str, theta0: float):
+    check_id = f"week6.laps.{direction}"
+
+    def run(ctx: Context) -> Outcome:
+        label = f"following the wall on the {direction}, starting at heading {fmt(theta0)}, your d_fw"
+        ok, text, details, r = _laps(ctx, check_id, direction, theta0, None, label)
+        return Outcome(float(ok), f"{label}: {text}", details, status=scenarios.status_of([r]))
+
+    run.__name__ = direction
+    return run
+
+
+def hidden_laps(ctx: Context) -> Outcome:
+    from grader.hidden import load_hidden
+
+    data = load_hidden(6)
+    if not data:
+        return Outcome(
+            0.0, "the instructor's hidden set is not here (it runs at official grading)", status="error"
+        )
+    picks = random.Random(f"{ctx.seed}:week6-variants").sample(data["variants"], 3)
+    good, lines, runs, done = 0, [], [], []
+    for v in picks:
+        label = f"on the {v['direction']}, start heading {fmt(v['theta0'])}, d_fw = {fmt(v['d_fw'])} m"
+        ok, text, details, r = _laps(ctx, "week6.laps.hidden", v["direction"], v["theta0"], v["d_fw"], label)
+        good += ok
+        lines.append(f"{label}: {text}")
+        runs.append({"variant": v, **details})
+        done.append(r)
+    return Outcome(
+        good / 3,
+        "; ".join(lines),
+        {"runs": runs, "traces": scenarios.trace_keys(done)},
+        status=scenarios.status_of(done),
+    )
+
+
+CHECKS = [
+    Check(
+        "week6.follow_wall.sensors",
+        "p_1, p_2: the two closest IR points on the chosen side",
+        "property",
+        1.0,
+        sensors,
+        FW,
+    ),
+    Check(
+        "week6.follow_wall.tangent",
+        "u_fw_t along the wall, u_fw_tp its unit vector",
+        "property",
+        1.0,
+        _vectors_check("week6.follow_wall.tangent", _tangent, "u_fw_tp is the unit vector along p_2 - p_1"),
+        FW,
+    ),
+    Check(
+        "week6.follow_wall.perpendicular",
+        "u_fw_p: to the wall, perpendicular, the distance long",
+        "property",
+        1.0,
+        _vectors_check(
+            "week6.follow_wall.perpendicular",
+            _perpendicular,
+            "u_fw_p is perpendicular to the wall, as long as the distance to it",
+        ),
+        FW,
+    ),
+    Check(
+        "week6.follow_wall.distance",
+        "u_fw_pp: toward d_fw from the wall, zero at d_fw",
+        "property",
+        1.0,
+        _vectors_check("week6.follow_wall.distance", _distance_part, "u_fw_pp is zero at d_fw"),
+        FW,
+    ),
+    Check(
+        "week6.follow_wall.u_fw",
+        "u_fw = d_fw * u_fw_tp + u_fw_pp",
+        "property",
+        1.0,
+        _vectors_check("week6.follow_wall.u_fw", _u_fw, "u_fw combines u_fw_tp and u_fw_pp"),
+        FW,
+    ),
+    Check(
+        "week6.supervisor.settings",
+        "QBSupervisor sets fw_direction and d_fw",
+        "property",
+        0.5,
+        settings,
+        SUPERVISOR,
+    ),
+    Check(
+        "week6.laps.left",
+        "two laps with the wall on the left (your d_fw): no collision, near d_fw",
+        "scenario",
+        2.0,
+        _visible("left", 0.0),
+        ALL,
+    ),
+    Check(
+        "week6.laps.right",
+        "two laps with the wall on the right (your d_fw): no collision, near d_fw",
+        "scenario",
+        2.0,
+        _visible("right", math.pi),
+        ALL,
+    ),
+    Check(
+        "week6.laps.hidden",
+        "two laps in variants drawn per seed (side, start heading, d_fw)",
+        "scenario",
+        1.5,
+        hidden_laps,
+        ALL,
+        visibility="hidden",
+    ),
+]
