@@ -162,14 +162,14 @@ def sensors(ctx: Context) -> Outcome:
 
 
 def _vectors_check(check_id: str, judge, passed: str):
-    """A property over FollowWall's vectors: `judge(answer, where, pose, d_fw)` raises Mismatch."""
+    """A property over FollowWall's vectors: `judge(wall)` raises Mismatch (see _Wall)."""
 
     def case(
         ctx: Context, distances: list, x: float, y: float, theta: float, direction: str, d_fw: float
     ) -> None:
         pose = [x, y, theta]
         answer = _follow_once(ctx, distances, pose, direction, d_fw)
-        judge(answer, _words(distances, pose, direction, d_fw), pose, d_fw)
+        judge(_Wall(answer, _words(distances, pose, direction, d_fw), pose, d_fw, distances, direction))
 
     examples = [
         {
@@ -219,82 +219,123 @@ def _v(a: tuple[float, float]) -> str:
     return f"({fmt(a[0])}, {fmt(a[1])})"
 
 
-def _tangent(answer: dict, where: str, pose: list, d_fw: float) -> None:
-    p_1 = _pair(answer.get("p_1"), f"{where} your p_1")
-    p_2 = _pair(answer.get("p_2"), f"{where} your p_2")
-    t = _pair(answer.get("u_fw_t"), f"{where} your u_fw_t")
-    tp = _pair(answer.get("u_fw_tp"), f"{where} your u_fw_tp")
+def _unit(u: tuple[float, float]) -> tuple[float, float] | None:
+    n = math.hypot(*u)
+    return (u[0] / n, u[1] / n) if n > 1e-12 else None
+
+
+def _is_unit(u: tuple[float, float]) -> bool:
+    return abs(math.hypot(*u) - 1) <= 1e-6
+
+
+def _perp(p_1: tuple[float, float], tp: tuple[float, float], pose: list) -> tuple[float, float]:
+    """From the robot to the nearest point of the line through p_1 along the unit vector tp."""
+    a = (p_1[0] - pose[0], p_1[1] - pose[1])
+    along = a[0] * tp[0] + a[1] * tp[1]
+    return (a[0] - along * tp[0], a[1] - along * tp[1])
+
+
+def _toward(p: tuple[float, float], d_fw: float) -> tuple[float, float] | None:
+    n = math.hypot(*p)
+    return (p[0] - d_fw * p[0] / n, p[1] - d_fw * p[1] / n) if n > 1e-12 else None
+
+
+class _Wall:
+    """The student's answer, and the wall it is judged against: the line through the student's own p_1
+    and p_2 when those are two distinct IR points (a wrong sensor choice costs only the sensors check),
+    else through the points of the right sensors. Each later vector is accepted if it follows from the
+    student's own previous vector (when that one is usable) or from the wall itself, so that one mistake
+    costs one check, and placeholders (zero vectors) fail their own checks."""
+
+    def __init__(self, answer: dict, where: str, pose: list, d_fw: float, distances: list, direction: str):
+        self.answer, self.where, self.pose, self.d_fw = answer, where, pose, d_fw
+        points = _points(answer, where)
+        p_1 = _pair(answer.get("p_1"), f"{where} your p_1")
+        p_2 = _pair(answer.get("p_2"), f"{where} your p_2")
+        own = (
+            _which(p_1, points) is not None and _which(p_2, points) is not None and math.dist(p_1, p_2) > 1e-9
+        )
+        if not own:
+            i_1, i_2 = wall_pairs(distances, direction)[0]
+            p_1, p_2 = points[i_1], points[i_2]
+        self.p_1, self.p_2 = p_1, p_2
+        self.t = (p_2[0] - p_1[0], p_2[1] - p_1[1])
+        self.tp = _unit(self.t) or (1.0, 0.0)
+        self.p = _perp(p_1, self.tp, pose)
+        self.pp = _toward(self.p, d_fw) or (0.0, 0.0)
+        self.fw = (d_fw * self.tp[0] + self.pp[0], d_fw * self.tp[1] + self.pp[1])
+
+    def mine(self, name: str) -> tuple[float, float]:
+        return _pair(self.answer.get(name), f"{self.where} your {name}")
+
+
+def _tangent(w: _Wall) -> None:
+    p_1, p_2, t, tp = w.mine("p_1"), w.mine("p_2"), w.mine("u_fw_t"), w.mine("u_fw_tp")
     want_t = (p_2[0] - p_1[0], p_2[1] - p_1[1])
-    if not _close(t, want_t):
-        raise Mismatch(f"{where} your u_fw_t was {_v(t)}, expected p_2 - p_1 = {_v(want_t)} (along the wall)")
-    n = math.hypot(*t)
-    if n == 0:
-        return  # both points coincide: there is no wall direction to check
-    want = (t[0] / n, t[1] / n)
-    if abs(math.hypot(*tp) - 1) > 1e-6:
+    if math.dist(p_1, p_2) <= 1e-9:
         raise Mismatch(
-            f"{where} your u_fw_tp was {_v(tp)}, of length {fmt(math.hypot(*tp))}: expected a unit "
-            f"vector, u_fw_t / |u_fw_t| = {_v(want)}"
+            f"{w.where} your p_1 and p_2 were the same point {_v(p_1)}: two different IR points "
+            "are needed to tell the wall's direction"
+        )
+    if not _close(t, want_t):
+        raise Mismatch(
+            f"{w.where} your u_fw_t was {_v(t)}, expected p_2 - p_1 = {_v(want_t)} (along the wall)"
+        )
+    want = _unit(t)
+    if not _is_unit(tp):
+        raise Mismatch(
+            f"{w.where} your u_fw_tp was {_v(tp)}, of length {fmt(math.hypot(*tp))}: expected a "
+            f"unit vector, u_fw_t / |u_fw_t| = {_v(want)}"
         )
     if not _close(tp, want):
         raise Mismatch(
-            f"{where} your u_fw_tp was {_v(tp)}, expected u_fw_t / |u_fw_t| = {_v(want)} (the same "
-            "direction as u_fw_t)"
+            f"{w.where} your u_fw_tp was {_v(tp)}, expected u_fw_t / |u_fw_t| = {_v(want)} (the "
+            "same direction as u_fw_t)"
         )
 
 
-def _foot(answer: dict, where: str, pose: list) -> tuple[tuple[float, float], tuple[float, float]]:
-    """The student's u_fw_tp and the vector from the robot to the nearest point of the line through their
-    p_1 along their u_fw_tp."""
-    p_1 = _pair(answer.get("p_1"), f"{where} your p_1")
-    tp = _pair(answer.get("u_fw_tp"), f"{where} your u_fw_tp")
-    a = (p_1[0] - pose[0], p_1[1] - pose[1])
-    along = a[0] * tp[0] + a[1] * tp[1]
-    return tp, (a[0] - along * tp[0], a[1] - along * tp[1])
-
-
-def _perpendicular(answer: dict, where: str, pose: list, d_fw: float) -> None:
-    tp, want = _foot(answer, where, pose)
-    p = _pair(answer.get("u_fw_p"), f"{where} your u_fw_p")
-    if abs(math.hypot(*tp) - 1) > 1e-6:
-        return  # u_fw_tp is not a unit vector: its own check says so; the projection would not hold
-    if abs(p[0] * tp[0] + p[1] * tp[1]) > 1e-6 * max(1.0, math.hypot(*p)):
-        raise Mismatch(
-            f"{where} your u_fw_p {_v(p)} is not perpendicular to your u_fw_tp {_v(tp)} (their dot "
-            f"product is {fmt(p[0] * tp[0] + p[1] * tp[1])}): expected (u_a - u_p) - "
-            f"((u_a - u_p) . u_fw_tp) u_fw_tp = {_v(want)}"
-        )
-    if not _close(p, want):
-        raise Mismatch(
-            f"{where} your u_fw_p was {_v(p)} (length {fmt(math.hypot(*p))}), expected the vector "
-            f"from the robot to the nearest point of the wall's line, {_v(want)} (length "
-            f"{fmt(math.hypot(*want))}, the distance to the wall): (u_a - u_p) - ((u_a - u_p) . "
-            "u_fw_tp) u_fw_tp with u_a = p_1 and u_p = (x, y)"
-        )
-
-
-def _distance_part(answer: dict, where: str, pose: list, d_fw: float) -> None:
-    p = _pair(answer.get("u_fw_p"), f"{where} your u_fw_p")
-    pp = _pair(answer.get("u_fw_pp"), f"{where} your u_fw_pp")
-    n = math.hypot(*p)
-    if n == 0:
+def _perpendicular(w: _Wall) -> None:
+    p, tp = w.mine("u_fw_p"), w.mine("u_fw_tp")
+    options = [w.p] + ([_perp(w.p_1, tp, w.pose)] if _is_unit(tp) else [])
+    if any(_close(p, want) for want in options):
         return
-    want = (p[0] - d_fw * p[0] / n, p[1] - d_fw * p[1] / n)
-    if not _close(pp, want):
+    want = w.p
+    dot = p[0] * w.tp[0] + p[1] * w.tp[1]
+    if abs(dot) > 1e-6 * max(1.0, math.hypot(*p)):
         raise Mismatch(
-            f"{where} your u_fw_p was {_v(p)} (the robot {fmt(n)} m from the wall) and your u_fw_pp "
-            f"{_v(pp)}, expected u_fw_p - d_fw * u_fw_p / |u_fw_p| = {_v(want)}: toward the point "
-            "d_fw from the wall, zero when the robot is at d_fw"
+            f"{w.where} your u_fw_p {_v(p)} is not perpendicular to the wall (its dot product with "
+            f"the wall's unit vector {_v(w.tp)} is {fmt(dot)}): expected (u_a - u_p) - ((u_a - u_p) "
+            f". u_fw_tp) u_fw_tp = {_v(want)}, with u_a = p_1 and u_p = (x, y)"
         )
+    raise Mismatch(
+        f"{w.where} your u_fw_p was {_v(p)} (length {fmt(math.hypot(*p))}), expected the vector from "
+        f"the robot to the nearest point of the wall's line, {_v(want)} (length "
+        f"{fmt(math.hypot(*want))}, the distance to the wall)"
+    )
 
 
-def _u_fw(answer: dict, where: str, pose: list, d_fw: float) -> None:
-    tp = _pair(answer.get("u_fw_tp"), f"{where} your u_fw_tp")
-    pp = _pair(answer.get("u_fw_pp"), f"{where} your u_fw_pp")
-    u = _pair(answer.get("u_fw"), f"{where} your u_fw")
-    want = (d_fw * tp[0] + pp[0], d_fw * tp[1] + pp[1])
-    if not _close(u, want):
-        raise Mismatch(f"{where} your u_fw was {_v(u)}, expected d_fw * u_fw_tp + u_fw_pp = {_v(want)}")
+def _distance_part(w: _Wall) -> None:
+    p, pp = w.mine("u_fw_p"), w.mine("u_fw_pp")
+    options = [w.pp] + [o for o in (_toward(p, w.d_fw),) if o is not None]
+    if any(_close(pp, want) for want in options):
+        return
+    basis = p if _toward(p, w.d_fw) is not None else w.p
+    want = options[-1] if _toward(p, w.d_fw) is not None else w.pp
+    raise Mismatch(
+        f"{w.where} with u_fw_p = {_v(basis)} (the robot {fmt(math.hypot(*basis))} m from the wall) "
+        f"your u_fw_pp was {_v(pp)}, expected u_fw_p - d_fw * u_fw_p / |u_fw_p| = {_v(want)}: toward "
+        "the point d_fw from the wall, zero when the robot is at d_fw"
+    )
+
+
+def _u_fw(w: _Wall) -> None:
+    tp, pp, u = w.mine("u_fw_tp"), w.mine("u_fw_pp"), w.mine("u_fw")
+    options = [w.fw]
+    if _is_unit(tp):
+        options.append((w.d_fw * tp[0] + pp[0], w.d_fw * tp[1] + pp[1]))
+    if any(_close(u, want) for want in options):
+        return
+    raise Mismatch(f"{w.where} your u_fw was {_v(u)}, expected d_fw * u_fw_tp + u_fw_pp = {_v(options[-1])}")
 
 
 def settings(ctx: Context) -> Outcome:
@@ -350,7 +391,7 @@ def _laps(
         "problem": r.problem,
         "traces": scenarios.trace_keys([r]),
     }
-    t = r.trace.steps["t"][counted.index(done)]
+    t = r.trace.steps["t"][counted.index(LAPS)] if done >= LAPS else None
     if r.problem:
         return False, r.problem, details, r
     if r.collision is not None:
@@ -390,6 +431,7 @@ def _visible(direction: str, theta0: float):
     def run(ctx: Context) -> Outcome:
         label = f"following the wall on the {direction}, starting at heading {fmt(theta0)}, your d_fw"
         ok, text, details, r = _laps(ctx, check_id, direction, theta0, None, label)
+        label += f" = {fmt(details['d_fw'])} m" if "d_fw" in details else ""
         return Outcome(float(ok), f"{label}: {text}", details, status=scenarios.status_of([r]))
 
     run.__name__ = direction

@@ -15,6 +15,7 @@ import numbers
 from collections.abc import Callable
 from typing import Any
 
+from grader.inside.probes_week6 import follow_wall, wall_settings
 from simiam.control.controller import Inputs
 from simiam.control.pose import Pose2D
 from simiam.control.robot_view import RobotView
@@ -199,27 +200,7 @@ def avoid_obstacles(sub, week: int, distances: list, pose: list, v: float = 0.2,
 
 # the weeks that keep their probes in a module of their own (grader/inside/probes_weekN.py)
 from grader.inside.probes_week5 import blend, switching  # noqa: E402
-def follow_wall(sub, week: int, distances: list, pose: list, direction: str, d_fw: float, v: float = 0.15,
-                dt: float = 0.05) -> Any:
-    """FollowWall.execute once with the IR distances fixed to `distances`: the wall points and vectors.
-
-    The IR points come from FollowWall's own (provided) apply_sensor_geometry, as in the course."""
-    robot = _robot(sub, week)
-    setattr(robot, "get_ir_distances", lambda: list(distances))  # noqa: B010 - the conversion is checked elsewhere
-    ctrl = sub.module("follow_wall").FollowWall()
-    inputs = Inputs(v=v, x_g=0.0, y_g=0.0, theta_d=0.0, direction=direction, d_fw=d_fw)
-    result = ctrl.execute(robot, Pose2D(*pose), inputs, dt)
-    names = ("p_1", "p_2", "u_fw_t", "u_fw_tp", "u_fw_p", "u_fw_pp", "u_fw", "ir_distances_wf")
-    return {"out": plain(result), "theta_fw": plain(getattr(ctrl, "theta_g", None)),
-            **{name: plain(getattr(ctrl, name, None)) for name in names}}
-
-
-def wall_settings(sub, week: int) -> Any:
-    """What QBSupervisor.__init__ set for following a wall: d_fw and fw_direction."""
-    supervisor, _ = _supervisor(sub, week)
-    return {"d_fw": plain(getattr(supervisor, "d_fw", None)),
-            "fw_direction": plain(getattr(supervisor, "fw_direction", None))}
-
+from grader.inside.probes_week6 import follow_wall, wall_settings  # noqa: E402
 
 PROBES: dict[str, Callable[..., Any]] = {
     "uni_to_diff": uni_to_diff,

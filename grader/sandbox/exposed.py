@@ -50,6 +50,7 @@ EXPOSED: tuple[str, ...] = (
     "grader/inside/caps.py",
     "grader/inside/probes.py",
     "grader/inside/probes_week5.py",
+    "grader/inside/probes_week6.py",
     "grader/inside/protocol.py",
     "grader/inside/rlimits.py",
     "grader/inside/seccomp.py",
