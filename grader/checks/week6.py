@@ -61,18 +61,15 @@ def gate(direction: str) -> laps.Gate:
     return laps.Gate(GATE_X, GATE_Y[0], GATE_Y[1], -1 if direction == "right" else 1)
 
 
-def wall_pairs(distances: list[float], direction: str) -> list[tuple[int, int]]:
-    """Every (i_1, i_2) a correct FollowWall may pick: two sensors of the side whose distances are the two
-    smallest there (any of them on a tie), ordered so that p_1 -> p_2 runs the way the robot drives (left:
-    the lower index first; right: the higher)."""
+def wall_pair(distances: list[float], direction: str) -> tuple[int, int]:
+    """(i_1, i_2): the sensors whose IR points are p_1 and p_2. Of the side's candidates (0, 1, 2 for the
+    left, 4, 3, 2 for the right) the two with the smallest distances, on a tie the first in that order (the
+    original's stable sort: the tie decides which "phantom wall" the robot follows when it sees nothing),
+    ordered so that p_1 -> p_2 runs the way the robot drives (left: the lower index first; right: the
+    higher)."""
     side = RIGHT if direction == "right" else LEFT
-    smallest = sorted(distances[i] for i in side)[:2]
-    pairs = []
-    for a in side:
-        for b in side:
-            if a < b and sorted((distances[a], distances[b])) == smallest:
-                pairs.append((b, a) if direction == "right" else (a, b))
-    return pairs
+    a, b = sorted(side, key=lambda i: distances[i])[:2]
+    return (max(a, b), min(a, b)) if direction == "right" else (min(a, b), max(a, b))
 
 
 def _pair(value: Any, what: str) -> tuple[float, float]:
@@ -134,14 +131,14 @@ def sensors(ctx: Context) -> Outcome:
                     "points: take a column of ir_distances_wf (its x and y)"
                 )
             got.append(i)
-        allowed = wall_pairs(distances, direction)
-        if tuple(got) not in allowed:
+        want = wall_pair(distances, direction)
+        if tuple(got) != want:
             side = "4, 3, 2" if direction == "right" else "0, 1, 2"
             order = "the higher index first" if direction == "right" else "the lower index first"
-            want = " or ".join(f"sensors {a} and {b}" for a, b in allowed)
             raise Mismatch(
                 f"{where} p_1 and p_2 were the points of sensors {got[0]} and {got[1]} (0..4), "
-                f"expected {want}: the two closest of sensors {side}, {order}"
+                f"expected sensors {want[0]} and {want[1]}: the two closest of sensors {side} (on a tie the "
+                f"first in that order), {order}"
             )
 
     examples = [
@@ -244,7 +241,7 @@ class _Wall:
     """The student's answer, and the wall it is judged against: the line through the student's own p_1
     and p_2 when those are two distinct IR points (a wrong sensor choice costs only the sensors check),
     else through the points of the right sensors. Each later vector is accepted if it follows from the
-    student's own previous vector (when that one is usable) or from the wall itself, so that one mistake
+    student's own previous vectors (when they are not zero) or from the wall itself, so that one mistake
     costs one check, and placeholders (zero vectors) fail their own checks."""
 
     def __init__(self, answer: dict, where: str, pose: list, d_fw: float, distances: list, direction: str):
@@ -256,7 +253,7 @@ class _Wall:
             _which(p_1, points) is not None and _which(p_2, points) is not None and math.dist(p_1, p_2) > 1e-9
         )
         if not own:
-            i_1, i_2 = wall_pairs(distances, direction)[0]
+            i_1, i_2 = wall_pair(distances, direction)
             p_1, p_2 = points[i_1], points[i_2]
         self.p_1, self.p_2 = p_1, p_2
         self.t = (p_2[0] - p_1[0], p_2[1] - p_1[1])
@@ -296,7 +293,7 @@ def _tangent(w: _Wall) -> None:
 
 def _perpendicular(w: _Wall) -> None:
     p, tp = w.mine("u_fw_p"), w.mine("u_fw_tp")
-    options = [w.p] + ([_perp(w.p_1, tp, w.pose)] if _is_unit(tp) else [])
+    options = [w.p] + ([_perp(w.p_1, tp, w.pose)] if math.hypot(*tp) > 1e-12 else [])
     if any(_close(p, want) for want in options):
         return
     want = w.p
@@ -331,7 +328,7 @@ def _distance_part(w: _Wall) -> None:
 def _u_fw(w: _Wall) -> None:
     tp, pp, u = w.mine("u_fw_tp"), w.mine("u_fw_pp"), w.mine("u_fw")
     options = [w.fw]
-    if _is_unit(tp):
+    if math.hypot(*tp) > 1e-12:
         options.append((w.d_fw * tp[0] + pp[0], w.d_fw * tp[1] + pp[1]))
     if any(_close(u, want) for want in options):
         return
@@ -357,54 +354,41 @@ def settings(ctx: Context) -> Outcome:
     return Outcome(1.0, f"fw_direction {direction!r}, d_fw {fmt(d_fw)} m", {"d_fw": d_fw})
 
 
-def _laps(
-    ctx: Context, check_id: str, direction: str, theta0: float, d_fw: float | None, label: str
-) -> tuple[bool, str, dict, scenarios.Run]:
-    """One run of the original test 6.x: v, direction and the start heading (true pose and estimate) set,
-    d_fw the student's own (None) or the variant's; 90 s; two laps through the gate, no collision in the
-    whole run, the median distance to the obstacle after the first 10 s within DISTANCE_TOL of d_fw."""
-    if d_fw is None:
-        answer = ctx.probe("wall_settings")
-        d_fw = number(answer.get("d_fw") if isinstance(answer, dict) else None, "your d_fw")
-        settings = {"v": V, "fw_direction": direction, "estimate": [0.0, 0.0, theta0], "state": "follow_wall"}
-    else:
-        settings = {
-            "v": V,
-            "fw_direction": direction,
-            "d_fw": d_fw,
-            "estimate": [0.0, 0.0, theta0],
-            "state": "follow_wall",
-        }
-    world = load_world(ctx.config.world)
-    r = scenarios.run(ctx, label, settings, SECONDS, world=world, start=(0.0, 0.0, theta0))
-    scenarios.keep(ctx, check_id, r)
-    xs, ys = r.trace.steps["x"], r.trace.steps["y"]
+def run_settings(direction: str, theta0: float, d_fw: float | None) -> dict:
+    """The supervisor settings of a lap run: v, the side, the start heading of the estimate (the original
+    test set the true pose and the estimate alike) and, for a variant, d_fw (None: the student's own)."""
+    settings = {"v": V, "fw_direction": direction, "estimate": [0.0, 0.0, theta0], "state": "follow_wall"}
+    return settings if d_fw is None else {**settings, "d_fw": d_fw}
+
+
+def judge_laps(
+    xs: list,
+    ys: list,
+    ts: list,
+    collision: dict | None,
+    direction: str,
+    d_fw: float,
+    obstacle: list,
+    dt: float,
+) -> tuple[bool, str, dict]:
+    """Two laps through the gate, no collision, and the median distance to `obstacle` (its polygons) after
+    the first SETTLE seconds within DISTANCE_TOL of d_fw: (passed, why, figures)."""
     counted = laps.laps(xs, ys, gate(direction))
     done = max(counted)
-    first = int(round(SETTLE / ctx.config.dt))
-    median = laps.median_distance(xs[first:], ys[first:], world.obstacles[:2]) if len(xs) > first else None
-    details = {
-        **r.metrics,
-        "laps": done,
-        "d_fw": d_fw,
-        "median_distance": median,
-        "problem": r.problem,
-        "traces": scenarios.trace_keys([r]),
-    }
-    t = r.trace.steps["t"][counted.index(LAPS)] if done >= LAPS else None
-    if r.problem:
-        return False, r.problem, details, r
-    if r.collision is not None:
-        return False, f"touched an obstacle at t = {r.collision['t']:.2f} s. {LAP_HINT}", details, r
+    first = int(round(SETTLE / dt))
+    median = laps.median_distance(xs[first:], ys[first:], obstacle) if len(xs) > first else None
+    t = ts[counted.index(LAPS)] if done >= LAPS else None
+    figures = {"laps": done, "d_fw": d_fw, "median_distance": median, "t_laps": t}
+    if collision is not None:
+        return False, f"touched an obstacle at t = {collision['t']:.2f} s. {LAP_HINT}", figures
     if done < LAPS:
         return (
             False,
             (
-                f"drove {max(done, 0)} lap(s) around the obstacle in {SECONDS:g} s ({LAPS} "
-                f"expected). {LAP_HINT}"
+                f"drove {max(done, 0)} lap(s) around the obstacle in {ts[-1]:g} s ({LAPS} expected in "
+                f"{SECONDS:g} s). {LAP_HINT}"
             ),
-            details,
-            r,
+            figures,
         )
     if median is None or abs(median - d_fw) > DISTANCE_TOL:
         shown = "no" if median is None else f"a median distance of {fmt(median)} m"
@@ -414,15 +398,42 @@ def _laps(
                 f"{LAPS} laps in {t:.1f} s, but kept {shown} from the obstacle, not about d_fw = "
                 f"{fmt(d_fw)} m (within {DISTANCE_TOL} m). {LAP_HINT}"
             ),
-            details,
-            r,
+            figures,
         )
     return (
         True,
-        f"{LAPS} laps in {t:.1f} s, no collision in {SECONDS:g} s, about {fmt(median)} m from the obstacle",
-        details,
-        r,
+        (f"{LAPS} laps in {t:.1f} s, no collision in {ts[-1]:g} s, about {fmt(median)} m from the obstacle"),
+        figures,
     )
+
+
+def _laps(
+    ctx: Context, check_id: str, direction: str, theta0: float, d_fw: float | None, label: str
+) -> tuple[bool, str, dict, scenarios.Run]:
+    """One run of the original test 6.x: v, direction and the start heading (true pose and estimate) set,
+    d_fw the student's own (None) or the variant's; 90 s; judged by judge_laps."""
+    if d_fw is None:
+        answer = ctx.probe("wall_settings")
+        d_fw = number(answer.get("d_fw") if isinstance(answer, dict) else None, "your d_fw")
+        settings = run_settings(direction, theta0, None)
+    else:
+        settings = run_settings(direction, theta0, d_fw)
+    world = load_world(ctx.config.world)
+    r = scenarios.run(ctx, label, settings, SECONDS, world=world, start=(0.0, 0.0, theta0))
+    scenarios.keep(ctx, check_id, r)
+    s = r.trace.steps
+    ok, text, figures = judge_laps(
+        s["x"], s["y"], s["t"], r.collision, direction, d_fw, obstacle(world), ctx.config.dt
+    )
+    details = {**r.metrics, **figures, "problem": r.problem, "traces": scenarios.trace_keys([r])}
+    if r.problem:
+        return False, r.problem, details, r
+    return ok, text, details, r
+
+
+def obstacle(world) -> list:
+    """The obstacle the robot follows: the world's polygons other than the four arena walls (the L)."""
+    return list(world.obstacles[:-4])
 
 
 def _visible(direction: str, theta0: float):

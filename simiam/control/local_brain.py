@@ -65,7 +65,8 @@ class LocalBrain:
             pose = settings["estimate"]
             if not (isinstance(pose, (list, tuple)) and len(pose) == 3
                     and all(isinstance(c, (int, float)) and math.isfinite(c) for c in pose)):
-                raise ValueError(f"the setting estimate must be three finite numbers (x, y, theta), got {pose!r}")
+                raise ValueError(f"the setting estimate must be three finite numbers (x, y, theta), "
+                                 f"got {pose!r}")
             sup.state_estimate.set_pose(tuple(float(c) for c in pose))
 
     def step(self, readings: Mapping[str, Any]) -> dict[str, Any]:

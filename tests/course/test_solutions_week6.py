@@ -6,7 +6,6 @@ wall on either side for the original test's 90 s (laps, no collision)."""
 from __future__ import annotations
 
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -15,12 +14,12 @@ import pytest
 from simiam.control import Inputs, Pose2D, RobotView, Supervisor, norm
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
+from simiam.course.weeks import get_week
 from simiam.simulator import ConstantBrain, Simulator
 from simiam.world import load_world
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tests/fidelity"))
-from week6_setup import WEEK6  # noqa: E402
+WEEK6 = get_week(6)
 
 
 def test_norm_is_the_length():

@@ -22,16 +22,17 @@ from pathlib import Path
 
 import mistakes
 import pytest
-from week6_setup import WEEK6
 
 from instructor_tools.reference_week6 import FollowWallBrain
 from simiam.control.local_brain import LocalBrain
 from simiam.control.norm import norm
 from simiam.course.loader import load_submission
+from simiam.course.weeks import get_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
 
 ROOT = Path(__file__).resolve().parents[2]
+WEEK6 = get_week(6)
 GOLDEN = ROOT / "tests/data/golden"
 FILES = {"followwall_closed_loop_dt0.05.csv": 0.05, "followwall_closed_loop_dt0.033.csv": 0.033}
 POSE_TOL = 1e-6
@@ -221,7 +222,11 @@ def test_after_build_first_reading_is_stale():
     assert list(simulator(reference_brain("3"), "3", 0.05).ir_raw) == [133, 133, 133, 196, 296]  # spec §11
 
 
-@pytest.mark.parametrize("name", ["week6_fw_right_swapped", "week6_fw_plain_norm", "week6_odometry_last"])
-def test_a_wrong_follow_wall_leaves_the_recording(tmp_path, name):
-    folder = mistakes.build("submissions", name, tmp_path, 6)
+@pytest.mark.parametrize(("kind", "name"), [("wrong", "week6_right_p1_lower"),
+                                           ("submissions", "week6_odometry_last"),
+                                           ("wrong", "good_week6_numpy_norm")])
+def test_a_wrong_follow_wall_leaves_the_recording(tmp_path, kind, name):
+    """A wrong wall side, the week-3 step order, and even np.linalg.norm (correct, but not the original's
+    rounding: one ulp moves a wheel through the dead zone) leave the recording."""
+    folder = mistakes.build(kind, name, tmp_path, 6)
     assert any(replay(solution_brain(folder, case), _solution_values, n, case) for n, case in RECORDED)

@@ -16,13 +16,13 @@ from pathlib import Path
 
 import mistakes
 import numpy as np
-import pytest
-from week6_setup import WEEK6
 
 from simiam.control import Inputs, Pose2D, RobotView, norm
 from simiam.course.loader import load_submission
+from simiam.course.weeks import get_week
 
 ROOT = Path(__file__).resolve().parents[2]
+WEEK6 = get_week(6)
 GOLDEN = ROOT / "tests/data/golden/followwall_vectors.csv"
 TOL = 1e-9
 
@@ -92,6 +92,5 @@ def test_recorded_choices_include_ties():
     assert tied >= 10
 
 
-@pytest.mark.parametrize("name", ["week6_fw_ties_prefer_last"])
-def test_a_wrong_sensor_choice_is_caught(tmp_path, name):
-    assert differences(mistakes.build("submissions", name, tmp_path, 6))
+def test_a_wrong_sensor_choice_on_ties_is_caught(tmp_path):
+    assert differences(mistakes.build("wrong", "week6_ties_prefer_last", tmp_path, 6))

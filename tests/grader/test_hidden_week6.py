@@ -1,0 +1,27 @@
+"""The instructor's hidden week-6 variants are fair: the reference solution passes the grader's own lap
+judgement on every one (two laps, no collision, near d_fw), and the set covers both sides."""
+
+from __future__ import annotations
+
+import pytest
+
+from grader.hidden import load_hidden
+from instructor_tools.hidden_week6 import reference_run
+
+
+def test_hidden_set_is_present_and_covers_both_sides() -> None:
+    data = load_hidden(6)
+    assert data is not None and len(data["variants"]) >= 10
+    assert {v["direction"] for v in data["variants"]} == {"left", "right"}
+    assert len({v["d_fw"] for v in data["variants"]}) >= 2
+    assert len({round(v["theta0"], 6) for v in data["variants"]}) >= 6
+
+
+@pytest.mark.slow
+def test_reference_solution_passes_every_hidden_variant() -> None:
+    failed = []
+    for v in load_hidden(6)["variants"]:
+        ok, why, _ = reference_run(v["direction"], v["theta0"], v["d_fw"])
+        if not ok:
+            failed.append((v, why))
+    assert failed == []
