@@ -31,8 +31,9 @@ class Gate:
     def crossing(self, a: Point, b: Point) -> int:
         """+1 if the step from a to b crosses the gate in the running direction, -1 against it, else 0.
 
-        A point exactly on the gate's line counts as the side the robot comes from (before the gate), so
-        a robot that starts on the line has not yet crossed it."""
+        A point exactly on the gate's line counts as past it: a robot that starts on the gate and drives
+        on has not crossed it; one that backs off first has crossed it backwards (-1), and its driving
+        forward again gives that back (+1)."""
         side_a = self.sign * (a[0] - self.x)
         side_b = self.sign * (b[0] - self.x)
         if side_a < 0 <= side_b:
