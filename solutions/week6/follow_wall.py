@@ -1,12 +1,11 @@
 """FollowWall: drive along a wall at the distance d_fw, with the wall on the left or on the right.
 
-The IR points in the world frame come from the provided apply_sensor_geometry (week 4's, shipped here so
-that a week-4 mistake does not move this week's robot). Two IR points on the wall estimate it as a line:
-p_1 and p_2, the points of the two sensors on the chosen side that measure the shortest distances
-(sensors 1, 2, 3 for the left, 5, 4, 3 for the right; index 0..4 here). Along the wall: u_fw_t = p_2 - p_1,
-and its unit vector u_fw_tp. Toward the wall: u_fw_p, the vector from the robot (u_p) to the nearest point
-of that line (through u_a = p_1); its length is the distance to the wall.
-u_fw_pp = u_fw_p - d_fw * u_fw_p/|u_fw_p| points toward the point d_fw from the wall (it is zero at
+The IR points in the world frame come from AvoidObstacles' apply_sensor_geometry (week 4). Two IR points
+on the wall estimate it as a line: p_1 and p_2, the points of the two sensors on the chosen side that
+measure the shortest distances (sensors 1, 2, 3 for the left, 5, 4, 3 for the right; index 0..4 here).
+Along the wall: u_fw_t = p_2 - p_1, and its unit vector u_fw_tp. Toward the wall: u_fw_p, the vector from
+the robot (u_p) to the nearest point of that line (through u_a = p_1); its length is the distance to the
+wall. u_fw_pp = u_fw_p - d_fw * u_fw_p/|u_fw_p| points toward the point d_fw from the wall (it is zero at
 distance d_fw). The robot steers along u_fw = d_fw * u_fw_tp + u_fw_pp.
 
 Student block (week 6) and the placeholders the stub gets:
@@ -25,6 +24,8 @@ import numpy as np
 
 from simiam.control import Controller, norm
 
+from .avoid_obstacles import AvoidObstacles
+
 
 class FollowWall(Controller):
     """Steers along u_fw: the wall on the side inputs.direction ("left" or "right"), at inputs.d_fw."""
@@ -41,6 +42,9 @@ class FollowWall(Controller):
         self.E_k = 0
         self.e_k_1 = 0
 
+        # the IR points in the world frame, as the avoid_obstacles state computes them (week 4)
+        self.geometry = AvoidObstacles()
+
         # what the viewer and the checks read after each call
         self.p_1 = None
         self.p_2 = None
@@ -56,7 +60,8 @@ class FollowWall(Controller):
 
         # the five IR distances, and the points they measure (columns, homogeneous coordinates)
         ir_distances = robot.get_ir_distances()
-        ir_distances_wf = self.apply_sensor_geometry(robot, ir_distances, state_estimate)
+        _, ir_distances_wf = self.geometry.apply_sensor_geometry(robot, ir_distances, state_estimate)
+        ir_distances_wf = np.asarray(ir_distances_wf)
 
         direction = inputs.direction  # "left" or "right" ("" counts as left, as in the original)
         d_fw = inputs.d_fw
@@ -116,24 +121,3 @@ class FollowWall(Controller):
         self.u_fw_p, self.u_fw_pp, self.u_fw = u_fw_p, u_fw_pp, u_fw
         self.ir_distances_wf = ir_distances_wf
         return inputs.v, w
-
-    def apply_sensor_geometry(self, robot, ir_distances, state_estimate):
-        """The IR points in the world frame: a 3x5 array, one column (x, y, 1) a sensor (as in week 4)."""
-        # sensor frame -> robot frame, with each sensor's mount pose (x_s, y_s, theta_s)
-        ir_distances_rf = np.zeros((3, 5))
-        for i in range(5):
-            x_s, y_s, theta_s = robot.ir_array[i].location.unpack()
-            T = self.get_transformation_matrix(x_s, y_s, theta_s)
-            ir_distances_rf[:, i] = T @ np.array([ir_distances[i], 0.0, 1.0])
-
-        # robot frame -> world frame, with the estimated pose of the robot
-        x, y, theta = state_estimate.unpack()
-        return self.get_transformation_matrix(x, y, theta) @ ir_distances_rf
-
-    def get_transformation_matrix(self, x, y, theta):
-        """T(x, y, theta): rotate by theta, then translate by (x, y) (3x3, homogeneous coordinates)."""
-        return np.array([
-            [math.cos(theta), -math.sin(theta), x],
-            [math.sin(theta), math.cos(theta), y],
-            [0.0, 0.0, 1.0],
-        ])
