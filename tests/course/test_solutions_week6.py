@@ -118,3 +118,15 @@ def test_solution_laps_without_touching_anything(direction, theta0):
         if laps > 2:
             break
     assert laps > 2
+
+
+def test_the_estimate_setting_starts_the_estimate_where_the_robot_is():
+    """The original week-6 tests set the estimate with the true pose; the runs do it with `estimate`."""
+    sup = _brain({"estimate": [0.0, 0.0, math.pi]}).supervisor
+    assert sup.state_estimate.unpack() == (0.0, 0.0, math.pi)
+
+
+@pytest.mark.parametrize("bad", [[0.0, 0.0], [0.0, 0.0, float("nan")], "0 0 0", [0.0, 0.0, None]])
+def test_a_malformed_estimate_setting_is_refused_clearly(bad):
+    with pytest.raises(ValueError, match="three finite numbers"):
+        _brain({"estimate": bad})
