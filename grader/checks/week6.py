@@ -61,15 +61,33 @@ def gate(direction: str) -> laps.Gate:
     return laps.Gate(GATE_X, GATE_Y[0], GATE_Y[1], -1 if direction == "right" else 1)
 
 
-def wall_pair(distances: list[float], direction: str) -> tuple[int, int]:
-    """(i_1, i_2): the sensors whose IR points are p_1 and p_2. Of the side's candidates (0, 1, 2 for the
-    left, 4, 3, 2 for the right) the two with the smallest distances, on a tie the first in that order (the
-    original's stable sort: the tie decides which "phantom wall" the robot follows when it sees nothing),
-    ordered so that p_1 -> p_2 runs the way the robot drives (left: the lower index first; right: the
-    higher)."""
+def _choice_problem(distances: list[float], direction: str, got: list[int]) -> str | None:
+    """What is wrong with the sensors (i_1, i_2) chosen for p_1 and p_2, or None. The rule, as properties:
+    both are candidates of the side (0, 1, 2 for the left, 4, 3, 2 for the right); the candidate left out
+    measures no less than either (on a tie it comes later in that order: the original's stable sort, and
+    the tie decides which "phantom wall" the robot follows when it sees nothing); p_1 -> p_2 runs the way
+    the robot drives (left: the lower index first; right: the higher)."""
     side = RIGHT if direction == "right" else LEFT
-    a, b = sorted(side, key=lambda i: distances[i])[:2]
-    return (max(a, b), min(a, b)) if direction == "right" else (min(a, b), max(a, b))
+    i_1, i_2 = got
+    if i_1 == i_2 or i_1 not in side or i_2 not in side:
+        return f"two different sensors of {', '.join(map(str, side))} ({direction} side)"
+    (left_out,) = [k for k in side if k not in got]
+    for k in got:
+        if distances[left_out] < distances[k] or (
+            distances[left_out] == distances[k] and side.index(left_out) < side.index(k)
+        ):
+            return (
+                f"the two closest of {', '.join(map(str, side))}: sensor {left_out} measures "
+                f"{fmt(distances[left_out])} m, sensor {k} {fmt(distances[k])} m (on a tie the first in that "
+                "order)"
+            )
+    if (i_1 < i_2) != (direction != "right"):
+        return (
+            "p_1 the higher index and p_2 the lower (the right side)"
+            if direction == "right"
+            else "p_1 the lower index and p_2 the higher (the left side)"
+        ) + ", so p_2 - p_1 points forward"
+    return None
 
 
 def _pair(value: Any, what: str) -> tuple[float, float]:
@@ -131,14 +149,11 @@ def sensors(ctx: Context) -> Outcome:
                     "points: take a column of ir_distances_wf (its x and y)"
                 )
             got.append(i)
-        want = wall_pair(distances, direction)
-        if tuple(got) != want:
-            side = "4, 3, 2" if direction == "right" else "0, 1, 2"
-            order = "the higher index first" if direction == "right" else "the lower index first"
+        problem = _choice_problem(distances, direction, got)
+        if problem:
             raise Mismatch(
                 f"{where} p_1 and p_2 were the points of sensors {got[0]} and {got[1]} (0..4), "
-                f"expected sensors {want[0]} and {want[1]}: the two closest of sensors {side} (on a tie the "
-                f"first in that order), {order}"
+                f"expected {problem}"
             )
 
     examples = [
@@ -159,14 +174,15 @@ def sensors(ctx: Context) -> Outcome:
 
 
 def _vectors_check(check_id: str, judge, passed: str):
-    """A property over FollowWall's vectors: `judge(wall)` raises Mismatch (see _Wall)."""
+    """A property over FollowWall's vectors: `judge(answer)` raises Mismatch. Each judges its vector from the
+    student's own earlier ones (p_1 and p_2, u_fw_t, u_fw_p), so one mistake costs one check."""
 
     def case(
         ctx: Context, distances: list, x: float, y: float, theta: float, direction: str, d_fw: float
     ) -> None:
         pose = [x, y, theta]
         answer = _follow_once(ctx, distances, pose, direction, d_fw)
-        judge(_Wall(answer, _words(distances, pose, direction, d_fw), pose, d_fw, distances, direction))
+        judge(_Answer(answer, _words(distances, pose, direction, d_fw), pose, d_fw))
 
     examples = [
         {
@@ -208,131 +224,135 @@ def _vectors_check(check_id: str, judge, passed: str):
     return run
 
 
-def _close(a: tuple[float, float], b: tuple[float, float], tol: float = 1e-6) -> bool:
-    return math.dist(a, b) <= tol * max(1.0, math.hypot(*b))
-
-
 def _v(a: tuple[float, float]) -> str:
     return f"({fmt(a[0])}, {fmt(a[1])})"
 
 
-def _unit(u: tuple[float, float]) -> tuple[float, float] | None:
-    n = math.hypot(*u)
-    return (u[0] / n, u[1] / n) if n > 1e-12 else None
+def _dot(a: tuple[float, float], b: tuple[float, float]) -> float:
+    return a[0] * b[0] + a[1] * b[1]
 
 
-def _is_unit(u: tuple[float, float]) -> bool:
-    return abs(math.hypot(*u) - 1) <= 1e-6
+def _cross(a: tuple[float, float], b: tuple[float, float]) -> float:
+    return a[0] * b[1] - a[1] * b[0]
 
 
-def _perp(p_1: tuple[float, float], tp: tuple[float, float], pose: list) -> tuple[float, float]:
-    """From the robot to the nearest point of the line through p_1 along the unit vector tp."""
-    a = (p_1[0] - pose[0], p_1[1] - pose[1])
-    along = a[0] * tp[0] + a[1] * tp[1]
-    return (a[0] - along * tp[0], a[1] - along * tp[1])
+def _length(a: tuple[float, float]) -> float:
+    return math.hypot(a[0], a[1])
 
 
-def _toward(p: tuple[float, float], d_fw: float) -> tuple[float, float] | None:
-    n = math.hypot(*p)
-    return (p[0] - d_fw * p[0] / n, p[1] - d_fw * p[1] / n) if n > 1e-12 else None
+TOL = 1e-6  # m (all vectors here are a few decimetres long)
 
 
-class _Wall:
-    """The student's answer, and the wall it is judged against: the line through the student's own p_1
-    and p_2 when those are two distinct IR points (a wrong sensor choice costs only the sensors check),
-    else through the points of the right sensors. Each later vector is accepted if it follows from the
-    student's own previous vectors (when they are not zero) or from the wall itself, so that one mistake
-    costs one check, and placeholders (zero vectors) fail their own checks."""
+class _Answer:
+    """One FollowWall answer read as 2-vectors, with where it came from for the messages."""
 
-    def __init__(self, answer: dict, where: str, pose: list, d_fw: float, distances: list, direction: str):
-        self.answer, self.where, self.pose, self.d_fw = answer, where, pose, d_fw
-        points = _points(answer, where)
-        p_1 = _pair(answer.get("p_1"), f"{where} your p_1")
-        p_2 = _pair(answer.get("p_2"), f"{where} your p_2")
-        own = (
-            _which(p_1, points) is not None and _which(p_2, points) is not None and math.dist(p_1, p_2) > 1e-9
-        )
-        if not own:
-            i_1, i_2 = wall_pair(distances, direction)
-            p_1, p_2 = points[i_1], points[i_2]
-        self.p_1, self.p_2 = p_1, p_2
-        self.t = (p_2[0] - p_1[0], p_2[1] - p_1[1])
-        self.tp = _unit(self.t) or (1.0, 0.0)
-        self.p = _perp(p_1, self.tp, pose)
-        self.pp = _toward(self.p, d_fw) or (0.0, 0.0)
-        self.fw = (d_fw * self.tp[0] + self.pp[0], d_fw * self.tp[1] + self.pp[1])
+    def __init__(self, answer: dict, where: str, pose: list, d_fw: float) -> None:
+        self.answer, self.where, self.d_fw = answer, where, d_fw
+        self.robot = (pose[0], pose[1])
 
-    def mine(self, name: str) -> tuple[float, float]:
+    def __getitem__(self, name: str) -> tuple[float, float]:
         return _pair(self.answer.get(name), f"{self.where} your {name}")
 
 
-def _tangent(w: _Wall) -> None:
-    p_1, p_2, t, tp = w.mine("p_1"), w.mine("p_2"), w.mine("u_fw_t"), w.mine("u_fw_tp")
-    want_t = (p_2[0] - p_1[0], p_2[1] - p_1[1])
-    if math.dist(p_1, p_2) <= 1e-9:
+def _tangent(a: _Answer) -> None:
+    """u_fw_t = p_2 - p_1; u_fw_tp is a unit vector pointing the same way."""
+    p_1, p_2, t, tp = a["p_1"], a["p_2"], a["u_fw_t"], a["u_fw_tp"]
+    if _length((p_2[0] - p_1[0], p_2[1] - p_1[1])) <= 1e-9:
         raise Mismatch(
-            f"{w.where} your p_1 and p_2 were the same point {_v(p_1)}: two different IR points "
+            f"{a.where} your p_1 and p_2 were the same point {_v(p_1)}: two different IR points "
             "are needed to tell the wall's direction"
         )
-    if not _close(t, want_t):
+    if _length((t[0] - (p_2[0] - p_1[0]), t[1] - (p_2[1] - p_1[1]))) > TOL:
         raise Mismatch(
-            f"{w.where} your u_fw_t was {_v(t)}, expected p_2 - p_1 = {_v(want_t)} (along the wall)"
+            f"{a.where} your u_fw_t was {_v(t)} with p_1 = {_v(p_1)} and p_2 = {_v(p_2)}: expected "
+            "p_2 - p_1, the vector along the wall"
         )
-    want = _unit(t)
-    if not _is_unit(tp):
+    if abs(_length(tp) - 1) > TOL:
         raise Mismatch(
-            f"{w.where} your u_fw_tp was {_v(tp)}, of length {fmt(math.hypot(*tp))}: expected a "
-            f"unit vector, u_fw_t / |u_fw_t| = {_v(want)}"
+            f"{a.where} your u_fw_tp was {_v(tp)}, of length {fmt(_length(tp))}: expected a unit "
+            "vector, u_fw_t divided by its length"
         )
-    if not _close(tp, want):
+    if abs(_cross(tp, t)) > TOL * _length(t) or _dot(tp, t) <= 0:
         raise Mismatch(
-            f"{w.where} your u_fw_tp was {_v(tp)}, expected u_fw_t / |u_fw_t| = {_v(want)} (the "
-            "same direction as u_fw_t)"
+            f"{a.where} your u_fw_tp {_v(tp)} does not point the way of your u_fw_t {_v(t)}: "
+            "expected u_fw_t divided by its length"
         )
 
 
-def _perpendicular(w: _Wall) -> None:
-    p, tp = w.mine("u_fw_p"), w.mine("u_fw_tp")
-    options = [w.p] + ([_perp(w.p_1, tp, w.pose)] if math.hypot(*tp) > 1e-12 else [])
-    if any(_close(p, want) for want in options):
+def _perpendicular(a: _Answer) -> None:
+    """u_fw_p is perpendicular to the wall (the line through p_1 and p_2) and ends on it: from the robot to
+    the nearest point of the wall, as long as the distance to it."""
+    p_1, p_2, p = a["p_1"], a["p_2"], a["u_fw_p"]
+    wall = (p_2[0] - p_1[0], p_2[1] - p_1[1])
+    if _length(wall) <= 1e-9:
+        raise Mismatch(
+            f"{a.where} your p_1 and p_2 were the same point {_v(p_1)}: there is no wall line for "
+            "u_fw_p to be perpendicular to"
+        )
+    unit = (wall[0] / _length(wall), wall[1] / _length(wall))
+    if _follows_own_tangent(a, p_1, p):
         return
-    want = w.p
-    dot = p[0] * w.tp[0] + p[1] * w.tp[1]
-    if abs(dot) > 1e-6 * max(1.0, math.hypot(*p)):
+    end = (a.robot[0] + p[0], a.robot[1] + p[1])
+    distance = abs(_cross((p_1[0] - a.robot[0], p_1[1] - a.robot[1]), unit))
+    if abs(_dot(p, unit)) > TOL:
         raise Mismatch(
-            f"{w.where} your u_fw_p {_v(p)} is not perpendicular to the wall (its dot product with "
-            f"the wall's unit vector {_v(w.tp)} is {fmt(dot)}): expected (u_a - u_p) - ((u_a - u_p) "
-            f". u_fw_tp) u_fw_tp = {_v(want)}, with u_a = p_1 and u_p = (x, y)"
+            f"{a.where} your u_fw_p {_v(p)} is not perpendicular to the wall through p_1 {_v(p_1)} "
+            f"and p_2 {_v(p_2)} (its part along the wall is {fmt(_dot(p, unit))} m): expected "
+            "(u_a - u_p) - ((u_a - u_p) . u_fw_tp) u_fw_tp, with u_a = p_1 and u_p = (x, y)"
         )
-    raise Mismatch(
-        f"{w.where} your u_fw_p was {_v(p)} (length {fmt(math.hypot(*p))}), expected the vector from "
-        f"the robot to the nearest point of the wall's line, {_v(want)} (length "
-        f"{fmt(math.hypot(*want))}, the distance to the wall)"
-    )
+    if abs(_cross((end[0] - p_1[0], end[1] - p_1[1]), unit)) > TOL:
+        raise Mismatch(
+            f"{a.where} your u_fw_p was {_v(p)} (length {fmt(_length(p))}): from the robot it does "
+            f"not reach the wall through p_1 and p_2, which is {fmt(distance)} m away: expected the "
+            "vector from the robot to the nearest point of the wall"
+        )
 
 
-def _distance_part(w: _Wall) -> None:
-    p, pp = w.mine("u_fw_p"), w.mine("u_fw_pp")
-    options = [w.pp] + [o for o in (_toward(p, w.d_fw),) if o is not None]
-    if any(_close(pp, want) for want in options):
-        return
-    basis = p if _toward(p, w.d_fw) is not None else w.p
-    want = options[-1] if _toward(p, w.d_fw) is not None else w.pp
-    raise Mismatch(
-        f"{w.where} with u_fw_p = {_v(basis)} (the robot {fmt(math.hypot(*basis))} m from the wall) "
-        f"your u_fw_pp was {_v(pp)}, expected u_fw_p - d_fw * u_fw_p / |u_fw_p| = {_v(want)}: toward "
-        "the point d_fw from the wall, zero when the robot is at d_fw"
-    )
+def _follows_own_tangent(a: _Answer, p_1: tuple[float, float], p: tuple[float, float]) -> bool:
+    """u_fw_p as the student's own u_fw_tp gives it, when that one is not a unit vector (its own check
+    fails): the projection formula applied to it, so that a wrong u_fw_tp costs only its own check."""
+    tp = a["u_fw_tp"]
+    if abs(_length(tp) - 1) <= TOL or _length(tp) <= 1e-9:
+        return False
+    to_wall = (p_1[0] - a.robot[0], p_1[1] - a.robot[1])
+    along = _dot(to_wall, tp)
+    return _length((p[0] - (to_wall[0] - along * tp[0]), p[1] - (to_wall[1] - along * tp[1]))) <= TOL
 
 
-def _u_fw(w: _Wall) -> None:
-    tp, pp, u = w.mine("u_fw_tp"), w.mine("u_fw_pp"), w.mine("u_fw")
-    options = [w.fw]
-    if math.hypot(*tp) > 1e-12:
-        options.append((w.d_fw * tp[0] + pp[0], w.d_fw * tp[1] + pp[1]))
-    if any(_close(u, want) for want in options):
-        return
-    raise Mismatch(f"{w.where} your u_fw was {_v(u)}, expected d_fw * u_fw_tp + u_fw_pp = {_v(options[-1])}")
+def _distance_part(a: _Answer) -> None:
+    """u_fw_pp lies along u_fw_p with the signed length |u_fw_p| - d_fw: toward the wall when the robot is
+    farther than d_fw, away from it when closer, zero at d_fw."""
+    p, pp = a["u_fw_p"], a["u_fw_pp"]
+    n = _length(p)
+    if n <= 1e-9:
+        raise Mismatch(
+            f"{a.where} your u_fw_p was {_v(p)}: u_fw_pp is built along u_fw_p, which must point "
+            "to the wall (the u_fw_p check says more)"
+        )
+    along = _dot(pp, p) / n
+    if abs(_cross(pp, p)) / n > TOL or abs(along - (n - a.d_fw)) > TOL:
+        raise Mismatch(
+            f"{a.where} with your u_fw_p = {_v(p)} (the robot {fmt(n)} m from the wall) your u_fw_pp "
+            f"was {_v(pp)}: expected u_fw_p - d_fw * u_fw_p / |u_fw_p|, along u_fw_p and "
+            f"{fmt(n)} - {fmt(a.d_fw)} = {fmt(n - a.d_fw)} m long (toward the point d_fw from the "
+            "wall, zero at d_fw)"
+        )
+
+
+def _u_fw(a: _Answer) -> None:
+    """u_fw - u_fw_pp is d_fw times u_fw_tp."""
+    tp, pp, u = a["u_fw_tp"], a["u_fw_pp"], a["u_fw"]
+    if _length(tp) <= 1e-9:
+        raise Mismatch(
+            f"{a.where} your u_fw_tp was {_v(tp)}: u_fw needs the direction along the wall (the "
+            "u_fw_tp check says more)"
+        )
+    rest = (u[0] - pp[0] - a.d_fw * tp[0], u[1] - pp[1] - a.d_fw * tp[1])
+    if _length(rest) > TOL:
+        raise Mismatch(
+            f"{a.where} your u_fw was {_v(u)} with u_fw_tp = {_v(tp)} and u_fw_pp = {_v(pp)}: "
+            "expected d_fw * u_fw_tp + u_fw_pp"
+        )
 
 
 def settings(ctx: Context) -> Outcome:
