@@ -25,3 +25,23 @@ def test_reference_solution_passes_every_hidden_variant() -> None:
         if not ok:
             failed.append((v, why))
     assert failed == []
+
+
+def _hidden_points(tmp_path, name: str) -> float:
+    import mistakes
+
+    from grader.grading import grade_submission
+
+    folder = mistakes.build("wrong", name, tmp_path, 6)
+    result = grade_submission(6, folder, seed=2014, hidden=True, only="week6.laps.hidden")
+    (check,) = result["checks"]
+    return check["points"] / check["max_points"]
+
+
+def test_hidden_runs_catch_a_wrong_follow_wall(tmp_path) -> None:
+    assert _hidden_points(tmp_path, "week6_pp_sign_flipped") == 0
+
+
+def test_hidden_runs_use_their_own_d_fw(tmp_path) -> None:
+    """The variants set d_fw, so a student's too small d_fw (lost in the visible runs) does not cost them."""
+    assert _hidden_points(tmp_path, "week6_d_fw_too_close") == 1
