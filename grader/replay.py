@@ -123,6 +123,21 @@ def _body(name: str, args: dict[str, Any]) -> str | None:
                       "sup.execute(0.05)",
                       "print('state after one step:', sup.current_state)"]
         return "\n".join(lines) + "\n"
+    if name == "follow_wall":
+        return (
+            "ctrl = sub.module('follow_wall').FollowWall()\n"
+            f"robot.get_ir_distances = lambda: {_value(args['distances'])}\n"
+            f"inputs = Inputs(v={args.get('v', 0.15)!r}, direction={args['direction']!r}, "
+            f"d_fw={args['d_fw']!r})\n"
+            f"print(ctrl.execute(robot, Pose2D(*{_value(args['pose'])}), inputs, {args.get('dt', 0.05)!r}))\n"
+            "for name in ('p_1', 'p_2', 'u_fw_t', 'u_fw_tp', 'u_fw_p', 'u_fw_pp', 'u_fw'):\n"
+            "    print(name, '=', getattr(ctrl, name))\n"
+        )
+    if name == "wall_settings":
+        return (
+            "sup = sub.module('qb_supervisor').QBSupervisor()\n"
+            "print('d_fw =', sup.d_fw, ' fw_direction =', repr(sup.fw_direction))\n"
+        )
     return None
 
 

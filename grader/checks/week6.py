@@ -2,10 +2,11 @@
 d_fw and fw_direction, and laps around the L-shaped obstacle on either side (hidden: other sides, start
 headings and distances d_fw, each checked with the reference solution when the set was made).
 
-The vector checks start from the student's own earlier results (u_fw_tp from their p_1 and p_2, u_fw_p from
-their u_fw_tp, ...), so one mistake costs its own check, not every later one. The IR points come from
-FollowWall's provided geometry and the runs from the provided supervisor code, so a mistake of an earlier
-week (odometry aside) does not move this week's robot.
+Every check is a property, with no reference answer: the sensors by what the sensor left out measures, each
+vector from the student's own earlier results (u_fw_tp from their u_fw_t, u_fw_p from their p_1 and p_2,
+u_fw_pp from their u_fw_p, u_fw from their u_fw_tp and u_fw_pp), so one mistake costs its own check, not
+every later one. The IR points are whatever the student's FollowWall keeps in ir_distances_wf (week 4's
+geometry), so the sensor check does not depend on that week either.
 """
 
 from __future__ import annotations

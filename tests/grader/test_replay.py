@@ -80,6 +80,9 @@ PROBE_CALLS = [  # one call of every probe, as the checks send them
     ("blend", {"week": 5, "calls": [{"u_ao": [0.02, 0.3], "pose": [0.2, -0.1, 0.4], "goal": [1.2, -0.1]}]}),
     ("switching", {"week": 5, "cases": [{"state": "go_to_goal", "distances": [0.3, 0.3, 0.06, 0.3, 0.3],
                                          "at_goal": False}]}),
+    ("follow_wall", {"week": 6, "distances": [0.1, 0.15, 0.3, 0.3, 0.3], "pose": [0.0, 0.0, 0.0],
+                     "direction": "left", "d_fw": 0.15, "v": 0.15}),
+    ("wall_settings", {"week": 6}),
 ]
 
 
