@@ -10,12 +10,11 @@ distance d_fw). The robot steers along u_fw = d_fw * u_fw_tp + u_fw_pp.
 
 Student block (week 6) and the placeholders the stub gets:
   execute: p_1, p_2 (the two wall points), u_fw_t, u_fw_tp, u_a, u_p, u_fw_p, u_fw_pp, u_fw.
-    Placeholder: p_1 = p_2 = the point of sensor 0 (right) or 4 (left), and every vector zero, so the
-    robot drives straight ahead (heading 0).
+    Placeholder: p_1 = p_2 = the point of sensor 0 and every vector zero, so u_fw is zero and the robot
+    turns to heading 0 (along the x axis), whatever it sees.
 
-The sp14 code kept u_fw_p/|u_fw_p| in its variable u_fw_pp and computed
-u_fw = d_fw*u_fw_tp + (u_fw_p - d_fw*u_fw_pp); the course's u_fw_pp (zero at d_fw) is written here so
-that it rounds the same way, and the run matches the recorded one step for step.
+The sp14 code kept the unit vector u_fw_p/|u_fw_p| in a variable named u_fw_pp; here u_fw_pp is the
+manual's vector toward the point d_fw from the wall (zero at d_fw).
 """
 
 import math
@@ -93,7 +92,8 @@ class FollowWall(Controller):
         u_p = np.array([x, y])
         u_fw_p = (u_a - u_p) - ((u_a - u_p) @ u_fw_tp) * u_fw_tp
 
-        # toward the point d_fw away from the wall
+        # toward the point d_fw away from the wall (d_fw times the unit vector, in this order, rounds as
+        # the original did: the recorded runs are matched step for step)
         u_fw_pp = u_fw_p - d_fw * (u_fw_p / norm(u_fw_p))
 
         u_fw = d_fw * u_fw_tp + u_fw_pp
