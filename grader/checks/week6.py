@@ -2,6 +2,9 @@
 d_fw and fw_direction, and laps around the L-shaped obstacle on either side (hidden: other sides, start
 headings and distances d_fw, each checked with the reference solution when the set was made).
 
+The lap runs use the course's versions of the earlier weeks' parts (grader.earlier: odometry, IR distances,
+the wheel speeds, AvoidObstacles' geometry), so a mistake there costs its own week, not this one.
+
 Every check is a property, with no reference answer: the sensors by what the sensor left out measures, each
 vector from the student's own earlier results (u_fw_tp from their u_fw_t, u_fw_p from their p_1 and p_2,
 u_fw_pp from their u_fw_p, u_fw from their u_fw_tp and u_fw_pp), so one mistake costs its own check, not
@@ -15,7 +18,7 @@ import math
 import random
 from typing import Any
 
-from grader import laps, scenarios
+from grader import earlier, laps, scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import describe, fmt, number
 from grader.domains import Floats, Lists, SampledFrom
@@ -440,7 +443,8 @@ def _laps(
     else:
         settings = run_settings(direction, theta0, d_fw)
     world = load_world(ctx.config.world)
-    r = scenarios.run(ctx, label, settings, SECONDS, world=world, start=(0.0, 0.0, theta0))
+    session, note = earlier.scenario_session(ctx)  # the course's versions of the earlier weeks' parts
+    r = scenarios.run(ctx, label, settings, SECONDS, world=world, start=(0.0, 0.0, theta0), session=session)
     scenarios.keep(ctx, check_id, r)
     s = r.trace.steps
     ok, text, figures = judge_laps(
@@ -449,7 +453,7 @@ def _laps(
     details = {**r.metrics, **figures, "problem": r.problem, "traces": scenarios.trace_keys([r])}
     if r.problem:
         return False, r.problem, details, r
-    return ok, text, details, r
+    return ok, text + (f". Note: {note}" if note else ""), details, r
 
 
 def obstacle(world) -> list:

@@ -15,7 +15,6 @@ import numbers
 from collections.abc import Callable
 from typing import Any
 
-from grader.inside.probes_week6 import follow_wall, wall_settings
 from simiam.control.controller import Inputs
 from simiam.control.pose import Pose2D
 from simiam.control.robot_view import RobotView

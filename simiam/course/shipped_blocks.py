@@ -86,4 +86,34 @@ SHIPPED: dict[int, dict[str, list[tuple]]] = {
             ("get_ir_distances", 1, 2, 19, "cdd2f0f97318d5ef"),
         ],
     },
+    6: {
+        "ao_and_gtg.py": [
+            ("AOandGTG.execute", 1, 5, 62, "dcba01d4c99cbc71"),
+        ],
+        "avoid_obstacles.py": [
+            ("AvoidObstacles.__init__", 1, 4, 32, "fa36144b9f6fb646"),
+            ("AvoidObstacles.execute", 1, 4, 53, "ea6767b0a8405bc4"),
+            ("AvoidObstacles.apply_sensor_geometry", 1, 4, 83, "4aaeec608f416631"),
+            ("AvoidObstacles.get_transformation_matrix", 1, 4, 101, "aff0a4ea696a4f9b"),
+        ],
+        "differential_drive.py": [
+            ("uni_to_diff", 1, 2, 17, "4a3d747f72afaad3"),
+        ],
+        "follow_wall.py": [
+            ("FollowWall.execute", 1, 6, 69, "3b7f3a9591bc6cc7"),
+        ],
+        "go_to_goal.py": [
+            ("GoToGoal.__init__", 1, 3, 24, "db76f4f2efe88734"),
+            ("GoToGoal.execute", 1, 3, 44, "6ea9f0cb1714bd70"),
+            ("GoToGoal.execute", 2, 3, 51, "67dabd64f946c78c"),
+            ("GoToGoal.execute", 3, 3, 57, "c319d9d978c7ce89"),
+        ],
+        "qb_supervisor.py": [
+            ("QBSupervisor.__init__", 1, 6, 53, "9de835877a9dd945"),
+            ("QBSupervisor.update_odometry", 1, 2, 138, "3a9e7d085bc8639e"),
+        ],
+        "quickbot.py": [
+            ("get_ir_distances", 1, 2, 19, "cdd2f0f97318d5ef"),
+        ],
+    },
 }

@@ -45,3 +45,13 @@ def test_hidden_runs_catch_a_wrong_follow_wall(tmp_path) -> None:
 def test_hidden_runs_use_their_own_d_fw(tmp_path) -> None:
     """The variants set d_fw, so a student's too small d_fw (lost in the visible runs) does not cost them."""
     assert _hidden_points(tmp_path, "week6_d_fw_too_close") == 1
+
+
+def test_a_week2_mistake_would_sink_the_laps_but_the_runs_use_the_course_parts(tmp_path) -> None:
+    """good_week6_week2_ir_divider keeps full marks in test_checks_fail (the lap runs take the course's
+    earlier parts, grader.earlier); run on its own code, the same folder crashes into the obstacle."""
+    import mistakes
+
+    folder = mistakes.build("wrong", "good_week6_week2_ir_divider", tmp_path, 6)
+    ok, why, _ = reference_run("left", 0.0, 0.18, folder)
+    assert not ok and "touched an obstacle" in why
