@@ -559,6 +559,7 @@ CHECKS = [
         2.0,
         _visible("left", 0.0),
         ALL,
+        plots=("trajectory", "signals:u_fw,u_fw_t,u_fw_p"),
     ),
     Check(
         "week6.laps.right",
@@ -567,6 +568,7 @@ CHECKS = [
         2.0,
         _visible("right", math.pi),
         ALL,
+        plots=("trajectory", "signals:u_fw,u_fw_t,u_fw_p"),
     ),
     Check(
         "week6.laps.hidden",

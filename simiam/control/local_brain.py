@@ -5,6 +5,7 @@ Implements the simulator's Brain seam: `step(readings) -> command` with plain va
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
@@ -17,7 +18,7 @@ if TYPE_CHECKING:
     from simiam.course.week import Week
 
 # settings that are not plain attributes of the supervisor (every other one is, e.g. v, goal, d_fw)
-_NOT_ATTRIBUTES = ("state", "gains")
+_NOT_ATTRIBUTES = ("state", "gains", "estimate")
 
 
 class LocalBrain:

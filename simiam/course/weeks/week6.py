@@ -69,6 +69,7 @@ WEEK = Week(
     settings=SupervisorSettings(v=0.15, state="follow_wall", extra={"fw_direction": "left"}),
     seconds=90.0,
     dt=0.05,
-    debug_signals=("v", "w", "theta_g", "ir_points_wf", "u_fw", "u_fw_t", "u_fw_p"),
+    debug_signals=("v", "w", "theta_g", "ir_points_wf", "u_fw", "u_fw_t", "u_fw_p", "u_fw_pp",
+                   "fw_direction"),
     summary=("path",),
 )
