@@ -1,7 +1,20 @@
-"""Trusted reference maths the checks compare student answers against.
+"""The one module of trusted reference maths the checks judge student answers with (issue 14).
 
-Runs only in the grading process. The kinematics come from the trusted simulator (`simiam.robot`); the
-rest is the course's formulas written out once (reference/original-simulator.md sections 2-5).
+Runs only in the grading process, and ships in the student's wheel, so it holds no answer of any student
+block (issue 11; tests/packaging/test_answer_search.py searches it for every block of solutions/). What it
+holds instead:
+
+- what the course gives every student anyway: the manual's IR table and dividers, the provided
+  `diff_to_uni` and `m_per_tick`, the provided wrap of go_to_angle.py;
+- the trusted simulator's own models: wheels and encoders driven open loop (`drive`), and where the
+  simulator places a point given a pose (`place`, `matrix_of`, `sensor_points`), read off its physics;
+- what a correct answer must satisfy, stated as a property rather than computed the student's way:
+  `ensure_w_command` (the (v, w) the motors can give that keeps w and gives up the least v),
+  `points_at` (a heading points along a vector), `bearing` (the direction of a vector, for the scenario
+  metrics and the messages).
+
+Where no property pins an answer, the check reads expected values that instructor tooling precomputed
+(grader/checks/expected/, drift-tested against instructor_tools/reference_maths.py).
 """
 
 from __future__ import annotations
@@ -9,6 +22,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
+from simiam.physics.transform import transform_fast
 from simiam.robot import dynamics
 from simiam.robot.ir_sensor import distance_to_raw, ir_voltage
 from simiam.robot.quickbot import RobotSpec, limit_speeds
@@ -34,18 +48,13 @@ IR_TABLE: tuple[tuple[float, float], ...] = (
 )
 
 
-def uni_to_diff(spec: RobotSpec, v: float, w: float) -> tuple[float, float]:
-    """(v, w) -> (vel_r, vel_l) in rad/s."""
-    return dynamics.uni_to_diff(spec.wheel_radius, spec.wheel_base_length, v, w)
-
-
 def diff_to_uni(spec: RobotSpec, vel_r: float, vel_l: float) -> tuple[float, float]:
-    """(vel_r, vel_l) -> (v, w)."""
+    """(vel_r, vel_l) -> (v, w): the provided diff_to_uni (the simulator's own, in the original's order)."""
     return dynamics.diff_to_uni(spec.wheel_radius, spec.wheel_base_length, vel_r, vel_l)
 
 
 def wrap(angle: float) -> float:
-    """The course's wrap into [-pi, pi]: atan2(sin a, cos a)."""
+    """The course's wrap into [-pi, pi] (provided in go_to_angle.py): atan2(sin a, cos a)."""
     return math.atan2(math.sin(angle), math.cos(angle))
 
 
@@ -54,26 +63,21 @@ def angle_diff(a: float, b: float) -> float:
     return abs(wrap(a - b))
 
 
-def theta_g(x: float, y: float, x_g: float, y_g: float) -> float:
-    """The heading from (x, y) to the goal."""
-    return math.atan2(y_g - y, x_g - x)
+def bearing(dx: float, dy: float) -> float:
+    """The direction of the vector (dx, dy), in [-pi, pi]."""
+    return math.atan2(dy, dx)
+
+
+def points_at(heading: float, dx: float, dy: float) -> float:
+    """How far (rad, 0 .. pi) the unit vector of `heading` is from pointing along (dx, dy): the angle
+    between the two vectors, from their cross and dot products."""
+    c, s = math.cos(heading), math.sin(heading)
+    return abs(math.atan2(c * dy - s * dx, c * dx + s * dy))
 
 
 def m_per_tick(spec: RobotSpec) -> float:
-    """Metres a wheel rolls per encoder tick."""
+    """Metres a wheel rolls per encoder tick (provided in qb_supervisor.py)."""
     return 2 * math.pi * spec.wheel_radius / spec.ticks_per_rev
-
-
-def odometry_step(
-    spec: RobotSpec, pose: Sequence[float], d_ticks_r: int, d_ticks_l: int
-) -> tuple[float, float, float]:
-    """The course's odometry update (heading of the old pose, theta not wrapped)."""
-    x, y, theta = pose
-    d_r = d_ticks_r * m_per_tick(spec)
-    d_l = d_ticks_l * m_per_tick(spec)
-    d_c = (d_r + d_l) / 2
-    phi = (d_r - d_l) / spec.wheel_base_length
-    return x + d_c * math.cos(theta), y + d_c * math.sin(theta), theta + phi
 
 
 def drive(
@@ -99,74 +103,46 @@ def drive(
     return ticks, poses
 
 
-def go_to_angle_run(
-    spec: RobotSpec, v: float, theta_d: float, steps: int, dt: float, kp: float = 1.0
-) -> tuple[list[tuple[int, int]], list[tuple]]:
-    """The course's week-2 odometry test: GoToAngle with the reference uni_to_diff and odometry, week-2 order.
-
-    Each step moves the robot with last step's wheels, then the controller sets new wheels from the
-    estimate, then odometry reads the new ticks. Returns the ticks and true poses after each step.
-    """
-    right, left = WheelEncoder(spec.ticks_per_rev), WheelEncoder(spec.ticks_per_rev)
-    pose = est = (0.0, 0.0, 0.0)
-    wheels = (0.0, 0.0)
-    prev = (0, 0)
-    ticks, poses = [], []
-    for _ in range(steps):
-        pose = dynamics.move(*pose, *wheels, spec.wheel_radius, spec.wheel_base_length, dt)
-        right.update(wheels[0], dt)
-        left.update(wheels[1], dt)
-        w = kp * wrap(theta_d - est[2])
-        wheels = limit_speeds(*uni_to_diff(spec, v, w), spec.max_vel, spec.min_vel)
-        est = odometry_step(spec, est, right.ticks - prev[0], left.ticks - prev[1])
-        prev = (right.ticks, left.ticks)
-        ticks.append(prev)
-        poses.append(pose)
-    return ticks, poses
-
-
-def ensure_w_week3(spec: RobotSpec, v: float, w: float) -> tuple[float, float]:
-    """The week-3 reference `ensure_w`: keep w, give up v, then the robot's limits. Returns applied wheels."""
-    _, w_max_v0 = diff_to_uni(spec, spec.max_vel, -spec.max_vel)
-    v_max_w0, _ = diff_to_uni(spec, spec.max_vel, spec.max_vel)
-    w = max(min(w, w_max_v0), -w_max_v0)
-    v = max(min(v, v_max_w0), -v_max_w0)
-    vel_r, vel_l = uni_to_diff(spec, v, w)
-    hi, lo = max(vel_r, vel_l), min(vel_r, vel_l)
-    if hi > spec.max_vel:
-        vel_r, vel_l = vel_r - (hi - spec.max_vel), vel_l - (hi - spec.max_vel)
-    elif lo < -spec.max_vel:
-        vel_r, vel_l = vel_r + (-spec.max_vel - lo), vel_l + (-spec.max_vel - lo)
-    return limit_speeds(vel_r, vel_l, spec.max_vel, spec.min_vel)
-
-
 def max_turn_rate(spec: RobotSpec) -> float:
     """The largest |w| the robot can turn with (on the spot, both wheels at max_vel)."""
     return diff_to_uni(spec, spec.max_vel, -spec.max_vel)[1]
 
 
-def transformation_matrix(x: float, y: float, theta: float) -> list[list[float]]:
-    """T(x, y, theta): rotate by theta, then translate by (x, y)."""
-    c, s = math.cos(theta), math.sin(theta)
-    return [[c, -s, x], [s, c, y], [0.0, 0.0, 1.0]]
+def ensure_w_command(spec: RobotSpec, v: float, w: float) -> tuple[float, float]:
+    """The (v, w) a correct ensure_w drives with, by the properties the week-3 handout states.
+
+    w is kept, cut only to the largest turn rate the motors allow; the same shift on both wheels changes v
+    alone, so v is the requested v moved the least that puts both wheels within max_vel: with turn rate w
+    the faster wheel runs |w| * L / (2 * R) above the mean, so the mean may reach R * max_vel - |w| * L / 2
+    and no further (both ways).
+    """
+    w_max = max_turn_rate(spec)
+    kept_w = max(min(w, w_max), -w_max)
+    top = max(0.0, spec.wheel_radius * spec.max_vel - abs(kept_w) * spec.wheel_base_length / 2)
+    return max(min(v, top), -top), kept_w
 
 
-def apply(t: list[list[float]], point: tuple[float, float]) -> tuple[float, float]:
-    """T * [px, py, 1], the (x, y) part."""
-    px, py = point
-    return t[0][0] * px + t[0][1] * py + t[0][2], t[1][0] * px + t[1][1] * py + t[1][2]
+def place(pose: Sequence[float], point: tuple[float, float]) -> tuple[float, float]:
+    """Where the simulator puts `point` (given in the frame of `pose`) in the outer frame."""
+    xs, ys = transform_fast((pose[0], pose[1], pose[2]), [point])
+    return xs[0], ys[0]
+
+
+def matrix_of(x: float, y: float, theta: float) -> list[list[float]]:
+    """The 3x3 matrix of the simulator's placement at pose (x, y, theta), read off where it puts the unit
+    vectors (rotation alone) and the origin (translation alone): columns T e1, T e2, T 0."""
+    (c1, c2), (s1, s2) = transform_fast((0.0, 0.0, theta), [(1.0, 0.0), (0.0, 1.0)])
+    (tx,), (ty,) = transform_fast((x, y, 0.0), [(0.0, 0.0)])
+    return [[c1, c2, tx], [s1, s2, ty], [0.0, 0.0, 1.0]]
 
 
 def sensor_points(
     spec: RobotSpec, distances: list[float], pose: Sequence[float]
 ) -> tuple[list[tuple[float, float]], list[tuple[float, float]]]:
-    """Each IR distance as a point in the robot frame (via the mount) and the world frame (via the pose)."""
-    robot_frame = [
-        apply(transformation_matrix(*mount), (d, 0.0))
-        for mount, d in zip(spec.ir_mounts, distances, strict=False)
-    ]
-    pose_t = transformation_matrix(*pose)
-    return robot_frame, [apply(pose_t, p) for p in robot_frame]
+    """Each IR distance as the simulator places it: in the robot frame (via the mount) and in the world
+    (via the pose)."""
+    robot_frame = [place(mount, (d, 0.0)) for mount, d in zip(spec.ir_mounts, distances, strict=False)]
+    return robot_frame, [place(pose, p) for p in robot_frame]
 
 
 def ir_raw(spec: RobotSpec, distance: float) -> int:
@@ -182,20 +158,19 @@ def ir_divider(spec: RobotSpec) -> float:
 __all__ = [
     "IR_TABLE",
     "angle_diff",
-    "apply",
+    "bearing",
     "diff_to_uni",
     "drive",
-    "ensure_w_week3",
-    "go_to_angle_run",
+    "ensure_w_command",
     "ir_divider",
     "ir_raw",
     "ir_voltage",
+    "limit_speeds",
     "m_per_tick",
+    "matrix_of",
     "max_turn_rate",
-    "odometry_step",
+    "place",
+    "points_at",
     "sensor_points",
-    "theta_g",
-    "transformation_matrix",
-    "uni_to_diff",
     "wrap",
 ]

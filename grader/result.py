@@ -13,6 +13,7 @@ import json
 import sys
 from dataclasses import dataclass, field
 from importlib import metadata
+from pathlib import Path
 from typing import Any
 
 STATUSES = ("passed", "failed", "error", "timeout")
@@ -60,13 +61,15 @@ def package_version() -> str:
 
 
 # The code that decides a score besides the checks' own functions: a change here changes the hash too.
+_EXPECTED = Path(__file__).resolve().parent / "checks" / "expected"
 _SCORING_MODULES = ("grader.reference", "grader.properties", "grader.scenarios", "grader.inside.probes",
                     "grader.checks.answers", "grader.hidden")
 
 
 def check_set_hash(checks: list) -> str:
     """A short hash over what decides a score: every check's id, weight, kind and visibility, the source
-    of the week's check modules and of the scoring helpers, and the hidden data.
+    of the week's check modules and of the scoring helpers, the expected values they read, and the hidden
+    data.
 
     Two runs with the same hash (and seed) ran the same checks the same way, so a local and an official
     result can be compared.
@@ -85,6 +88,8 @@ def check_set_hash(checks: list) -> str:
     from grader.hidden import hidden_dir
 
     for path in sorted(hidden_dir().glob("week*.json")):
+        h.update(path.read_bytes())
+    for path in sorted(_EXPECTED.glob("*.json")):  # the expected values checks read as data
         h.update(path.read_bytes())
     return h.hexdigest()[:16]
 

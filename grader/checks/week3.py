@@ -60,7 +60,7 @@ def keeps_w(ctx: Context) -> Outcome:
         spec = ctx.spec
         applied = ref.limit_speeds(*_ensure_w(ctx, v, w), spec.max_vel, spec.min_vel)
         got = ref.diff_to_uni(spec, *applied)[1]
-        want = max(min(w, ref.max_turn_rate(spec)), -ref.max_turn_rate(spec))
+        want = ref.ensure_w_command(spec, v, w)[1]
         if abs(got - want) > 1e-6 * max(1.0, abs(want)):
             raise Mismatch(
                 f"with v = {fmt(v)}, w = {fmt(w)} the robot turned at w = {fmt(got)} after its motor "
@@ -102,7 +102,7 @@ def gives_up_v(ctx: Context) -> Outcome:
         spec = ctx.spec
         applied = ref.limit_speeds(*_ensure_w(ctx, v, w), spec.max_vel, spec.min_vel)
         got = ref.diff_to_uni(spec, *applied)[0]
-        want = ref.diff_to_uni(spec, *ref.ensure_w_week3(spec, v, w))[0]
+        want = ref.ensure_w_command(spec, v, w)[0]  # the least v given up (a property, not a copy)
         if abs(got - want) > 1e-6 * max(1.0, abs(want)):
             raise Mismatch(
                 f"with v = {fmt(v)}, w = {fmt(w)} the robot drove at v = {fmt(got)}, expected "
@@ -130,7 +130,7 @@ def seeded_goals(
     goals: list[tuple[float, float]] = []
     while len(goals) < n:
         g = (round(rng.uniform(-1.1, 1.1), 2), round(rng.uniform(-1.1, 1.1), 2))
-        if math.hypot(*g) >= 0.5 and turn[0] <= abs(math.atan2(g[1], g[0])) <= turn[1]:
+        if math.hypot(*g) >= 0.5 and turn[0] <= abs(ref.bearing(*g)) <= turn[1]:
             goals.append(g)
     return goals
 

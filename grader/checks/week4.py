@@ -56,7 +56,7 @@ def transformation(ctx: Context) -> Outcome:
             3,
             f"get_transformation_matrix{_pose_words(x, y, theta)}",
         )
-        want = ref.transformation_matrix(x, y, theta)
+        want = ref.matrix_of(x, y, theta)  # read off where the simulator places points
         for i in range(3):
             for j in range(3):
                 if abs(got[i][j] - want[i][j]) > 1e-6:
@@ -76,8 +76,14 @@ def transformation(ctx: Context) -> Outcome:
     )
 
 
+def frames(ctx: Context, pose: list) -> list:
+    """The matrices the probes put in place of the student's get_transformation_matrix: one per sensor
+    mount and one for the robot's pose, from the simulator's placement (grader.reference.matrix_of)."""
+    return [[*at, ref.matrix_of(*at)] for at in (*ctx.spec.ir_mounts, tuple(pose))]
+
+
 def _geometry(ctx: Context, distances: list, pose: list) -> tuple[list, list]:
-    answer = ctx.probe("sensor_geometry", distances=distances, pose=pose)
+    answer = ctx.probe("sensor_geometry", distances=distances, pose=pose, frames=frames(ctx, pose))
     if not isinstance(answer, list) or len(answer) != 2:
         raise Mismatch(
             "apply_sensor_geometry must return two 3x5 matrices (ir_distances_rf, ir_distances_wf)"
@@ -99,7 +105,7 @@ def _frame_check(frame: str):
         else:  # from the student's own robot-frame points, so a robot-frame mistake is not counted twice
             got, want = (
                 wf,
-                [ref.apply(ref.transformation_matrix(*pose), (rf[0][i], rf[1][i])) for i in range(5)],
+                [ref.place(pose, (rf[0][i], rf[1][i])) for i in range(5)],
             )
             hint = "T(x, y, theta) of the robot's pose times the robot-frame point"
         for i in range(5):
@@ -140,7 +146,8 @@ def _u_ao(ctx: Context, distances: list, pose: list = POSE) -> tuple[np.ndarray,
 
 def _avoid_once(ctx: Context, distances: list, pose: list) -> tuple[np.ndarray, np.ndarray, dict]:
     """One AvoidObstacles.execute: u_ao, the vectors to the student's own IR points, and the raw answer."""
-    answer = ctx.probe("avoid_obstacles", distances=distances, pose=pose, v=ctx.config.settings.v)
+    answer = ctx.probe("avoid_obstacles", distances=distances, pose=pose, v=ctx.config.settings.v,
+                       frames=frames(ctx, pose))
     if not isinstance(answer, dict):
         raise Mismatch("AvoidObstacles.execute gave no answer")
     where = f"with IR distances {', '.join(fmt(d) for d in distances)}"
@@ -240,7 +247,7 @@ def heading(ctx: Context) -> Outcome:
         )
         theta_ao = number(answer.get("theta_ao"), f"{where} your theta_ao")
         e_k = number(answer.get("e_k"), f"{where} your heading error e_k")
-        want = math.atan2(float(u_ao[1]), float(u_ao[0]))
+        want = ref.bearing(float(u_ao[0]), float(u_ao[1]))
         if ref.angle_diff(theta_ao, want) > 1e-6:
             raise Mismatch(
                 f"{where} your u_ao was ({fmt(float(u_ao[0]))}, {fmt(float(u_ao[1]))}) and theta_ao "

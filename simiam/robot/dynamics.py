@@ -1,20 +1,15 @@
-"""Differential-drive kinematics: the exact arc per step, and the reference uni_to_diff / diff_to_uni.
+"""Differential-drive kinematics: the exact arc per step, from the wheel speeds through diff_to_uni.
 
 The original integrates with ode45 at 1e-8 over a step with constant wheel speeds; the exact arc agrees
 with it to ~1e-12. The arc is evaluated in chord form (length v*dt*sinc(w*dt/2) along the mid heading),
-which stays accurate when w*dt is tiny. The true heading is never wrapped.
+which stays accurate when w*dt is tiny. The true heading is never wrapped. The physics never needs
+uni_to_diff (a student block): it integrates wheel speeds; the reference one lives with the instructor's
+tooling (instructor_tools/reference_maths.py).
 """
 
 from __future__ import annotations
 
 import math
-
-
-def uni_to_diff(R: float, L: float, v: float, w: float) -> tuple[float, float]:
-    """Unicycle (v, w) -> wheel speeds (vel_r, vel_l), in the original's operation order."""
-    vel_r = (2 * v + w * L) / (2 * R)
-    vel_l = (2 * v - w * L) / (2 * R)
-    return vel_r, vel_l
 
 
 def diff_to_uni(R: float, L: float, vel_r: float, vel_l: float) -> tuple[float, float]:

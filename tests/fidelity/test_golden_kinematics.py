@@ -6,7 +6,8 @@ from __future__ import annotations
 import pytest
 from physics_golden import check_kinematics, wrong
 
-from simiam.robot.dynamics import diff_to_uni, uni_to_diff
+from instructor_tools.reference_maths import uni_to_diff
+from simiam.robot.dynamics import diff_to_uni
 from simiam.robot.quickbot import WHEEL_BASE_LENGTH as L
 from simiam.robot.quickbot import WHEEL_RADIUS as R
 

@@ -167,28 +167,43 @@ def transformation_matrix(sub, week: int, x: float, y: float, theta: float) -> A
     return plain(ctrl.get_transformation_matrix(x, y, theta))
 
 
-def _trusted_matrix(x: float, y: float, theta: float) -> list[list[float]]:
-    c, s = math.cos(theta), math.sin(theta)
-    return [[c, -s, x], [s, c, y], [0.0, 0.0, 1.0]]
+def _given_matrices(ctrl: Any, frames: list | None) -> None:
+    """Put the grader's matrices in place of the student's get_transformation_matrix for the calls a
+    correct apply_sensor_geometry makes (each sensor's mount pose, the robot's pose), so a mistake in the
+    matrix costs only its own check. `frames` is [[x, y, theta, matrix], ...], computed by the grader from
+    the simulator's placement: this module holds no matrix maths (it runs next to student code). A call
+    with other arguments gets the student's own matrix."""
+    if not frames:
+        return
+    table = {(float(x), float(y), float(theta)): matrix for x, y, theta, matrix in frames}
+    own = ctrl.get_transformation_matrix
+
+    def get_transformation_matrix(x: float, y: float, theta: float) -> Any:
+        given = table.get((float(x), float(y), float(theta)))
+        return [list(row) for row in given] if given is not None else own(x, y, theta)
+
+    ctrl.get_transformation_matrix = get_transformation_matrix
 
 
-def sensor_geometry(sub, week: int, distances: list, pose: list) -> Any:
+def sensor_geometry(sub, week: int, distances: list, pose: list, frames: list | None = None) -> Any:
     """AvoidObstacles.apply_sensor_geometry(robot, distances, pose) -> [rf, wf].
 
-    The controller gets a correct get_transformation_matrix, so a mistake there costs only its own
-    check; a solution that builds the matrices inline is unaffected.
+    The controller gets the grader's matrices (`frames`, see _given_matrices), so a mistake in
+    get_transformation_matrix costs only its own check; a solution that builds the matrices inline is
+    unaffected.
     """
     ctrl = sub.module("avoid_obstacles").AvoidObstacles()
-    ctrl.get_transformation_matrix = _trusted_matrix
+    _given_matrices(ctrl, frames)
     return plain(ctrl.apply_sensor_geometry(_robot(sub, week), list(distances), Pose2D(*pose)))
 
 
-def avoid_obstacles(sub, week: int, distances: list, pose: list, v: float = 0.2, dt: float = 0.033) -> Any:
+def avoid_obstacles(sub, week: int, distances: list, pose: list, v: float = 0.2, dt: float = 0.033,
+                    frames: list | None = None) -> Any:
     """AvoidObstacles.execute once with the IR distances fixed to `distances`: u_ao and the IR points."""
     robot = _robot(sub, week)
     setattr(robot, "get_ir_distances", lambda: list(distances))  # noqa: B010 - the conversion is checked elsewhere
     ctrl = sub.module("avoid_obstacles").AvoidObstacles()
-    ctrl.get_transformation_matrix = _trusted_matrix
+    _given_matrices(ctrl, frames)
     result = ctrl.execute(robot, Pose2D(*pose), Inputs(v=v, x_g=0.0, y_g=0.0, theta_d=0.0), dt)
     return {
         "out": plain(result),
