@@ -5,7 +5,8 @@ no answers).
 Two rules, both computed from each block, never from a list of names:
 
 - **Lines**: a normalised code line of a block (whitespace collapsed, trailing comment dropped) that the
-  course does not give every student anyway (provided code outside the blocks, the placeholders).
+  course does not give every student anyway (provided code outside the blocks, the stubs' placeholders),
+  and that does more than assign one number or word (a gain or a setting is a choice, not maths).
 - **Expressions**, to catch the same maths in other wording: every expression of a block, with local names
   replaced by `_` (module names such as `math` and attribute names such as `.max_vel` kept), numbers as
   floats, the operands of `+` and `*` sorted, and locals assigned once inlined (so `c = math.cos(theta)`
@@ -27,7 +28,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from simiam.course.blocks import find_blocks
-from simiam.course.weeks import all_blocks
 
 DISTINCT = 8
 SMALL = 5
@@ -166,20 +166,35 @@ class Answers:
 
 
 def _provided(repo: Path) -> tuple[set[str], set[str]]:
-    """Lines and shapes every student receives anyway: the placeholders, and the stubs outside the blocks."""
-    lines = {norm_line(ln) for p in all_blocks() for ln in p.code.splitlines()}
+    """Lines and shapes every student receives anyway: the stubs outside the blocks, and each stub block
+    that is a placeholder (its body differs from the solution's; a later week's stub ships earlier blocks
+    filled in, and those stay answers), so no list of placeholders is needed."""
+    lines: set[str] = set()
     shapes: set[str] = set()
     for stub in sorted(repo.glob("assignments/week*/*.py")):
         text = stub.read_text()
-        inside = {n for b in find_blocks(text, stub.name) for n in range(b.start_line + 1, b.end_line)}
-        outside = [ln for n, ln in enumerate(text.splitlines(), 1) if n not in inside]
-        lines.update(norm_line(ln) for ln in outside)
-        blanked = text.splitlines()  # the blocks' bodies out (later weeks ship earlier answers filled in)
+        solution = repo / "solutions" / stub.parent.name / stub.name
+        solved = {b.key: b.body for b in find_blocks(solution.read_text(), stub.name)} if solution.is_file() \
+            else {}
+        blanked = text.splitlines()
         for b in find_blocks(text, stub.name):
+            if b.body != solved.get(b.key):  # a placeholder: given to every student
+                lines.update(norm_line(ln) for ln in b.body.splitlines())
+                shapes.update(_all_expressions(ast.parse(textwrap.dedent(b.body)), 1))
             blanked[b.start_line:b.end_line - 1] = [f"{b.indent}pass"] * (b.end_line - 1 - b.start_line)
+        lines.update(norm_line(ln) for ln in blanked)
         shapes.update(_all_expressions(ast.parse("\n".join(blanked)), 1))
-        shapes.update(s for p in all_blocks() for s in _all_expressions(ast.parse(p.code), 1))
     return lines, shapes
+
+
+def _setting(code: str) -> bool:
+    """`self.Kp = 2.5`, `self.fw_direction = "left"`: one number or word assigned, a choice (a gain, a
+    setting the framework may default to), not maths. A list of numbers (the IR fit) is not a setting."""
+    try:
+        (statement,) = ast.parse(code).body
+    except (SyntaxError, ValueError):
+        return False
+    return isinstance(statement, ast.Assign) and isinstance(statement.value, ast.Constant)
 
 
 def answers_of(repo: Path) -> Answers:
@@ -192,7 +207,7 @@ def answers_of(repo: Path) -> Answers:
             where = f"{path.relative_to(repo)} {b.describe()}"
             for line in b.body.splitlines():
                 code = norm_line(line)
-                trivial = not code or code.startswith("#") or re.fullmatch(r"\w+:", code)
+                trivial = not code or code.startswith("#") or re.fullmatch(r"\w+:", code) or _setting(code)
                 if not trivial and code not in provided_lines:
                     lines[code] = where
             body = ast.parse(textwrap.dedent(b.body))
