@@ -128,6 +128,20 @@ def place(pose: Sequence[float], point: tuple[float, float]) -> tuple[float, flo
     return xs[0], ys[0]
 
 
+def placed(pose: Sequence[float], points: Sequence[tuple[float, float]]) -> list[tuple[float, float]]:
+    """Where the simulator puts many points given in the frame of `pose` (its own transform)."""
+    xs, ys = transform_fast((pose[0], pose[1], pose[2]), points)
+    return list(zip(xs, ys, strict=True))
+
+
+def travel(spec: RobotSpec, d_ticks_r: int, d_ticks_l: int) -> tuple[float, float]:
+    """How far the robot's centre rolls and how much it turns (rad) while the encoders count these ticks:
+    the mean and the difference over L of the wheels' arcs (the simulator's drive: each wheel rolls
+    m_per_tick per tick, and the turn of an arc is (d_r - d_l)/L)."""
+    d_r, d_l = d_ticks_r * m_per_tick(spec), d_ticks_l * m_per_tick(spec)
+    return (d_r + d_l) / 2, (d_r - d_l) / spec.wheel_base_length
+
+
 def matrix_of(x: float, y: float, theta: float) -> list[list[float]]:
     """The 3x3 matrix of the simulator's placement at pose (x, y, theta), read off where it puts the unit
     vectors (rotation alone) and the origin (translation alone): columns T e1, T e2, T 0."""
@@ -170,7 +184,9 @@ __all__ = [
     "matrix_of",
     "max_turn_rate",
     "place",
+    "placed",
     "points_at",
     "sensor_points",
+    "travel",
     "wrap",
 ]

@@ -140,8 +140,7 @@ def min_clearance(trace: Trace, world: World, spec, every: int = 3) -> float | N
     gap = math.inf
     for k in rows:
         x, y, th = s["x"][k], s["y"][k], s["theta"][k]
-        c, si = math.cos(th), math.sin(th)
-        body = clearance.Shape([(x + c * px - si * py, y + si * px + c * py) for px, py in plate])
+        body = clearance.Shape(ref.placed((x, y, th), plate))
         for obstacle in obstacles:
             if clearance.box_gap(body.box, obstacle.box) < gap:  # else it cannot be the nearest
                 gap = min(gap, clearance.distance(body, obstacle))

@@ -74,8 +74,7 @@ def _judge(aspect: str):
         spec = ctx.spec
         prev = list(start)
         for k, (est, (d_right, d_left)) in enumerate(zip(_estimates(ctx, steps, start), steps, strict=False)):
-            d_r, d_l = d_right * ref.m_per_tick(spec), d_left * ref.m_per_tick(spec)
-            d_c, phi = (d_r + d_l) / 2, (d_r - d_l) / spec.wheel_base_length
+            d_c, phi = ref.travel(spec, d_right, d_left)
             dx, dy, dtheta = est[0] - prev[0], est[1] - prev[1], est[2] - prev[2]
             moved = math.hypot(dx, dy)
             where = (
@@ -140,8 +139,7 @@ def course_test(ctx: Context) -> Outcome:
     est = _estimates(ctx, steps, [0.0, 0.0, 0.0])[-1]
     reference, slack = list(case["estimate"]), 1e-9
     for d_r, d_l in steps:
-        d_c = (d_r + d_l) / 2 * ref.m_per_tick(spec)
-        phi = (d_r - d_l) * ref.m_per_tick(spec) / spec.wheel_base_length
+        d_c, phi = ref.travel(spec, d_r, d_l)
         slack += abs(d_c * phi) / 2  # how far the midpoint or exact-arc variants may differ from the course's
     true = case["true_pose"]
     errors = [abs((t - e) / t) for t, e in zip(true, est, strict=True)]

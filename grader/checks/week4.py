@@ -280,11 +280,10 @@ def _variant(world: World, turn: int, of: int, mirror: bool) -> World:
     """The world mirrored in y (if asked) and rotated about the start by 2*pi*turn/of: the robot starts
     facing another way, and its estimate still starts at (0, 0, 0) as the student's supervisor expects."""
     theta = turn * 2 * math.pi / of
-    c, s = math.cos(theta), math.sin(theta)
     moved = []
     for poly in world.obstacles:
         q = [(x, -y) if mirror else (x, y) for x, y in poly]
-        moved.append([(c * x - s * y, s * x + c * y) for x, y in q])
+        moved.append(ref.placed((0.0, 0.0, theta), q))
     label = f"week-4 world{' mirrored' if mirror else ''}, turned {360 * turn / of:g} degrees"
     return World(label, moved)
 

@@ -4,11 +4,11 @@
     with StudentSession(week, spliced_dir, Limits()) as session:    # sandbox="auto" | "bwrap" | "subprocess"
         session.load(); session.call("probe", name=..., args={...}); session.isolation_note
 
-Modules: protocol (JSON lines on a private pipe pair), worker + worker_loop (inside the sandbox),
-isolation (bubblewrap or plain subprocess, dedicated uid), exposed (what the worker can import),
-capabilities (what this system offers), runner (start, deadlines, kill the whole tree),
-output (capped capture of stdout/stderr), limits (rlimits), workdir (private copy of the spliced folder),
-session (StudentSession, RemoteBrain), validate (type checks on untrusted values), errors, bench.
+Modules (the grader's side; what runs inside the worker is the package grader.inside): isolation
+(bubblewrap or plain subprocess, dedicated uid), exposed (what the worker can import), capabilities (what
+this system offers), runner (start, deadlines, kill the whole tree), output (capped capture of
+stdout/stderr), limits (Limits), workdir (private copy of the spliced folder), session (StudentSession,
+RemoteBrain), validate (type checks on untrusted values), errors, stuck, leftovers, bench.
 
 What holds in every mode: the grading process never imports student code; only strict JSON crosses back
 and the grader validates it; per-call and per-submission wall limits, RLIMIT_CPU/AS/FSIZE/NOFILE/NPROC,
@@ -27,7 +27,7 @@ from grader.sandbox.limits import Limits
 
 
 def __getattr__(name: str):
-    # Lazy, so the worker (which imports grader.sandbox.limits) does not load the grader-side modules.
+    # Lazy: importing Limits or the errors does not load the grader-side session machinery.
     if name in ("RemoteBrain", "StudentSession"):
         from grader.sandbox import session
 
