@@ -2,7 +2,7 @@
 covered the day its solutions exist), and a search for those answers in any file (issue 11: the wheel holds
 no answers).
 
-Two rules, both computed from each block, never from a list of names:
+Three rules, all computed from each block, never from a list of names:
 
 - **Lines**: a normalised code line of a block (whitespace collapsed, trailing comment dropped) that the
   course does not give every student anyway (provided code outside the blocks, the stubs' placeholders),
@@ -16,11 +16,21 @@ Two rules, both computed from each block, never from a list of names:
   SEVERAL distinct expressions of weight >= SMALL of one block inside one function. One small expression
   alone is ordinary geometry (`d * math.cos(heading)`, the midpoint `(a + b) / 2`), which the simulator
   and the report need; the same three of them in one function are an odometry update.
+- **Values**, to catch algebra in other wording: a block's expression of weight >= DISTINCT made of + - * /
+  ** and math functions over 2 to 4 names is evaluated with the names bound to fixed numbers in every
+  order; a file's expression with the same results is the same maths (`(v + w * L / 2) / R` is
+  `(2 * v + w * L) / (2 * R)`).
+
+What it cannot see: maths spread over several functions, loops, or numpy calls it does not evaluate. The
+wrong versions in tests/data/wheel_answers/ show what it does see.
 """
 
 from __future__ import annotations
 
 import ast
+import itertools
+import math
+import operator
 import re
 import textwrap
 from collections.abc import Iterable, Iterator
@@ -103,6 +113,106 @@ class _Shapes:
         return f"{type(node).__name__}({','.join(s for s, _ in parts)})", weight + sum(w for _, w in parts)
 
 
+_MATH = {"sin": math.sin, "cos": math.cos, "tan": math.tan, "atan2": math.atan2, "sqrt": math.sqrt,
+         "hypot": math.hypot, "exp": math.exp, "arctan2": math.atan2, "pi": math.pi}
+_OPS = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul, ast.Div: operator.truediv,
+        ast.Pow: operator.pow}
+_POOLS = ((0.37, 1.91, -0.83, 2.71), (1.13, -0.29, 0.61, -1.77))
+
+
+class _Values(_Shapes):
+    """The same maths in any algebraic wording: an expression of + - * / ** and math functions over 2 to 4
+    free names is evaluated with the names bound to fixed numbers in every order; the sorted results are its
+    fingerprint, equal for `(2 * v + w * L) / (2 * R)` and `(v + w * L / 2) / R`, whatever the names."""
+
+    def free(self, node: ast.AST, inline: bool) -> frozenset[str] | None:
+        """The free names (attribute chains such as robot.max_vel count as one), or None if not maths."""
+        if isinstance(node, ast.Name):
+            value = self.values.get(node.id) if inline else None
+            if value is not None and node.id not in self.busy:
+                self.busy.add(node.id)
+                try:
+                    return self.free(value, True)
+                finally:
+                    self.busy.discard(node.id)
+            return None if node.id in MODULES else frozenset({node.id})
+        if isinstance(node, ast.Attribute):
+            if isinstance(node.value, ast.Name) and node.value.id in MODULES:
+                return frozenset() if node.attr in _MATH else None
+            inner = _chain(node)
+            return None if inner is None else frozenset({inner})
+        if isinstance(node, ast.Constant):
+            number = isinstance(node.value, int | float) and not isinstance(node.value, bool)
+            return frozenset() if number else None
+        if isinstance(node, ast.BinOp) and type(node.op) in _OPS:
+            left, right = self.free(node.left, inline), self.free(node.right, inline)
+            return None if left is None or right is None else left | right
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub | ast.UAdd):
+            return self.free(node.operand, inline)
+        if isinstance(node, ast.Call) and _math_call(node) and not node.keywords:
+            parts = [self.free(a, inline) for a in node.args]
+            return None if any(x is None for x in parts) else frozenset().union(*parts)
+        return None
+
+    def evaluate(self, node: ast.AST, inline: bool, env: dict[str, float]) -> float:
+        if isinstance(node, ast.Name):
+            value = self.values.get(node.id) if inline else None
+            if value is not None and node.id not in self.busy:
+                self.busy.add(node.id)
+                try:
+                    return self.evaluate(value, True, env)
+                finally:
+                    self.busy.discard(node.id)
+            return env[node.id]
+        if isinstance(node, ast.Attribute):
+            if isinstance(node.value, ast.Name) and node.value.id in MODULES:
+                return float(_MATH[node.attr])  # math.pi
+            return env[_chain(node) or ""]
+        if isinstance(node, ast.Constant):
+            return float(node.value)
+        if isinstance(node, ast.BinOp):
+            return float(_OPS[type(node.op)](self.evaluate(node.left, inline, env),
+                                             self.evaluate(node.right, inline, env)))
+        if isinstance(node, ast.UnaryOp):
+            value = self.evaluate(node.operand, inline, env)
+            return -value if isinstance(node.op, ast.USub) else value
+        assert isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+        return float(_MATH[node.func.attr](*(self.evaluate(a, inline, env) for a in node.args)))
+
+    def fingerprint(self, node: ast.AST, inline: bool) -> tuple | None:
+        names = self.free(node, inline)
+        if names is None or not 2 <= len(names) <= 4:
+            return None
+        order = sorted(names)
+        results = []
+        try:
+            for pool in _POOLS:
+                for values in itertools.permutations(pool[:len(order)]):
+                    value = self.evaluate(node, inline, dict(zip(order, values, strict=True)))
+                    if isinstance(value, complex) or not math.isfinite(value):
+                        return None
+                    results.append(f"{value:.9g}")
+        except (ArithmeticError, ValueError, KeyError, TypeError):
+            return None
+        return len(order), tuple(sorted(results))
+
+
+def _chain(node: ast.AST) -> str | None:
+    """`robot.max_vel` -> "robot.max_vel"; None for anything but names and attributes."""
+    if isinstance(node, ast.Name):
+        return node.id
+    if isinstance(node, ast.Attribute):
+        inner = _chain(node.value)
+        return None if inner is None else f"{inner}.{node.attr}"
+    return None
+
+
+def _math_call(node: ast.Call) -> bool:
+    f = node.func
+    return isinstance(f, ast.Attribute) and isinstance(f.value, ast.Name) and f.value.id in MODULES \
+        and f.attr in _MATH and f.attr != "pi"
+
+
 def _pairs(target: ast.expr, value: ast.expr) -> list[tuple[str, ast.expr]]:
     if isinstance(target, ast.Name):
         return [(target.id, value)]
@@ -147,6 +257,26 @@ def expressions(scope: ast.AST, minimum: int = SMALL) -> dict[str, int]:
     return out
 
 
+def values(scope: ast.AST, minimum: int = SMALL) -> dict[tuple, int]:
+    """{fingerprint: weight} of every expression of `scope` that is maths over 2 to 4 names (_Values)."""
+    shapes = _Values(scope)
+    out: dict[tuple, int] = {}
+    for node in _own_nodes(scope):
+        if isinstance(node, ast.BinOp | ast.Call | ast.UnaryOp):
+            for inline in (False, True):
+                weight = shapes.of(node, inline)[1]
+                if weight >= minimum and (fp := shapes.fingerprint(node, inline)) is not None:
+                    out[fp] = max(weight, out.get(fp, 0))
+    return out
+
+
+def _all_values(tree: ast.AST, minimum: int) -> dict[tuple, int]:
+    out: dict[tuple, int] = {}
+    for scope in _scopes(tree):
+        out.update(values(scope, minimum))
+    return out
+
+
 def _all_expressions(tree: ast.AST, minimum: int) -> dict[str, int]:
     out: dict[str, int] = {}
     for scope in _scopes(tree):
@@ -160,17 +290,20 @@ class Answers:
 
     lines: dict[str, str]
     shapes: dict[str, tuple[int, str]]  # shape -> (weight, block)
+    values: dict[tuple, tuple[int, str]]  # fingerprint of an expression of weight >= DISTINCT -> same
 
     def blocks(self) -> set[str]:
-        return {b for _, b in self.shapes.values()} | set(self.lines.values())
+        return {b for _, b in self.shapes.values()} | {b for _, b in self.values.values()} | set(
+            self.lines.values())
 
 
-def _provided(repo: Path) -> tuple[set[str], set[str]]:
+def _provided(repo: Path) -> tuple[set[str], set[str], set[tuple]]:
     """Lines and shapes every student receives anyway: the stubs outside the blocks, and each stub block
     that is a placeholder (its body differs from the solution's; a later week's stub ships earlier blocks
     filled in, and those stay answers), so no list of placeholders is needed."""
     lines: set[str] = set()
     shapes: set[str] = set()
+    prints: set[tuple] = set()
     for stub in sorted(repo.glob("assignments/week*/*.py")):
         text = stub.read_text()
         solution = repo / "solutions" / stub.parent.name / stub.name
@@ -181,10 +314,12 @@ def _provided(repo: Path) -> tuple[set[str], set[str]]:
             if b.body != solved.get(b.key):  # a placeholder: given to every student
                 lines.update(norm_line(ln) for ln in b.body.splitlines())
                 shapes.update(_all_expressions(ast.parse(textwrap.dedent(b.body)), 1))
+                prints.update(_all_values(ast.parse(textwrap.dedent(b.body)), 1))
             blanked[b.start_line:b.end_line - 1] = [f"{b.indent}pass"] * (b.end_line - 1 - b.start_line)
         lines.update(norm_line(ln) for ln in blanked)
         shapes.update(_all_expressions(ast.parse("\n".join(blanked)), 1))
-    return lines, shapes
+        prints.update(_all_values(ast.parse("\n".join(blanked)), 1))
+    return lines, shapes, prints
 
 
 def _setting(code: str) -> bool:
@@ -199,9 +334,10 @@ def _setting(code: str) -> bool:
 
 def answers_of(repo: Path) -> Answers:
     """Every answer of every block of solutions/week*/ (see the module's docstring)."""
-    provided_lines, provided_shapes = _provided(repo)
+    provided_lines, provided_shapes, provided_values = _provided(repo)
     lines: dict[str, str] = {}
     shapes: dict[str, tuple[int, str]] = {}
+    prints: dict[tuple, tuple[int, str]] = {}
     for path in sorted(repo.glob("solutions/week*/*.py")):
         for b in find_blocks(path.read_text(), path.name):
             where = f"{path.relative_to(repo)} {b.describe()}"
@@ -214,7 +350,10 @@ def answers_of(repo: Path) -> Answers:
             for shape, weight in _all_expressions(body, SMALL).items():
                 if shape not in provided_shapes:
                     shapes[shape] = (weight, where)
-    return Answers(lines, shapes)
+            for fp, weight in _all_values(body, DISTINCT).items():
+                if fp not in provided_values:
+                    prints[fp] = (weight, where)
+    return Answers(lines, shapes, prints)
 
 
 def found_in(text: str, answers: Answers) -> list[str]:
@@ -233,6 +372,8 @@ def found_in(text: str, answers: Answers) -> list[str]:
             if weight >= DISTINCT:
                 hits.append(f"the expression {shape} of {where}")
             per_block.setdefault(where, set()).add(shape)
+        for fp in values(scope).keys() & answers.values.keys():
+            hits.append(f"an expression equal to one of {answers.values[fp][1]} (same maths, other wording)")
         name = getattr(scope, "name", "the module")
         hits.extend(f"{len(found)} expressions of {where} in {name}: {sorted(found)}"
                     for where, found in per_block.items() if len(found) >= SEVERAL)

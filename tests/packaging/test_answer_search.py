@@ -58,6 +58,7 @@ def test_the_packaged_source_holds_no_answers(answers: Answers) -> None:
     ("old_bench.py", "differential_drive.py uni_to_diff"),
     ("old_bench.py", "QBSupervisor.update_odometry"),
     ("old_probes.py", "AvoidObstacles.get_transformation_matrix"),
+    ("uni_to_diff_rearranged.py", "differential_drive.py uni_to_diff"),  # (v + w L/2)/R: by its values
 ])
 def test_the_search_finds_answers_in_other_wording(answers: Answers, wrong: str, block: str) -> None:
     """The wrong versions (tests/data/wheel_answers/): the files as they were before this search existed."""
