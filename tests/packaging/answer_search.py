@@ -15,7 +15,8 @@ Three rules, all computed from each block, never from a list of names:
   weight >= DISTINCT (weight: the number of operands, operators, calls, names and constants), or at least
   SEVERAL distinct expressions of weight >= SMALL of one block inside one function. One small expression
   alone is ordinary geometry (`d * math.cos(heading)`, the midpoint `(a + b) / 2`), which the simulator
-  and the report need; the same three of them in one function are an odometry update.
+  and the report need; the same three of them in one function are an odometry update. Arithmetic of
+  names alone (`a * (x - x0) - b * (y - y0)`) never counts: it is any rotation or difference.
 - **Values**, to catch algebra in other wording: a block's expression of weight >= DISTINCT made of + - * /
   ** and math functions over 2 to 4 names is evaluated with the names bound to fixed numbers in every
   order; a file's expression with the same results is the same maths (`(v + w * L / 2) / R` is
@@ -46,6 +47,9 @@ MODULES = frozenset({"math", "np", "numpy", "cmath"})
 _WEIGHED = (ast.BinOp, ast.UnaryOp, ast.Call, ast.Attribute, ast.Subscript, ast.Compare, ast.BoolOp,
             ast.IfExp, ast.Name, ast.Constant)
 _SORTED = (ast.Add, ast.Mult)
+# Only names and + - * /: `a * (x - x0) - b * (y - y0)` is any rotation, lerp or difference; an answer's
+# expression has something of the course in it (a number, a call, an attribute, an index).
+_GENERIC = re.compile(r"(?:BinOp\(|Add\(|Mult\(|Sub\(\)|Div\(\)|UnaryOp\(USub\(\)|_|,|\))+")
 
 
 def norm_line(line: str) -> str:
@@ -70,19 +74,23 @@ class _Shapes:
         self.memo: dict[tuple[int, bool], tuple[str, int]] = {}
         self.busy: set[str] = set()
 
-    def of(self, node: ast.AST, inline: bool) -> tuple[str, int]:
+    def of(self, node: ast.AST, inline: bool | str) -> tuple[str, int]:
+        """`inline`: False (as written), True (every local assigned once), "aliases" (only names bound to
+        another name or attribute, such as `cos = math.cos`)."""
         key = (id(node), inline)
         if key not in self.memo:
             self.memo[key] = self._of(node, inline)
         return self.memo[key]
 
-    def _of(self, node: ast.AST, inline: bool) -> tuple[str, int]:
+    def _of(self, node: ast.AST, inline: bool | str) -> tuple[str, int]:
         if isinstance(node, ast.Name):
             value = self.values.get(node.id) if inline and isinstance(node.ctx, ast.Load) else None
+            if inline == "aliases" and not isinstance(value, ast.Name | ast.Attribute):
+                value = None
             if value is not None and node.id not in self.busy:
                 self.busy.add(node.id)
                 try:
-                    return self.of(value, True)
+                    return self.of(value, inline)
                 finally:
                     self.busy.discard(node.id)
             return (node.id if node.id in MODULES else "_"), 1
@@ -250,9 +258,9 @@ def expressions(scope: ast.AST, minimum: int = SMALL) -> dict[str, int]:
     out: dict[str, int] = {}
     for node in _own_nodes(scope):
         if isinstance(node, ast.expr) and not isinstance(node, ast.Name | ast.Constant):
-            for inline in (False, True):
+            for inline in (False, True, "aliases"):
                 shape, weight = shapes.of(node, inline)
-                if weight >= minimum:
+                if weight >= minimum and not _GENERIC.fullmatch(shape):
                     out[shape] = weight
     return out
 
