@@ -17,7 +17,7 @@ from simiam.control import Controller
 
 
 class AOandGTG(Controller):
-    """Steers along u_ao_gtg, the blend of u_gtg (to the goal) and u_ao (away from obstacles); v = inputs.v."""
+    """Steers along u_ao_gtg, the blend of u_gtg (to the goal) and u_ao (from obstacles); v = inputs.v."""
 
     def __init__(self):
         super().__init__("ao_and_gtg")

@@ -1,0 +1,146 @@
+"""Week 7 against the original's recordings: the course author's navigation automaton (230acb3) in the
+final world (the trap around the start).
+
+fsm_closed_loop_dt0.05.csv / fsm_closed_loop_dt0.033.csv: solutions/week7 as shipped (v 0.15, d_stop 0.05,
+d_at_obs 0.12, d_unsafe 0.08, d_fw 0.18, d_prog from 10, fw_direction "left", starting in go_to_goal;
+GoToGoal and AvoidObstacles 4/0.01/0.01, AOandGTG alpha 0.25, FollowWall 2/0/0), the week-4 robot, only the
+goal set per case, as the original's test 7.1. Every recorded step must match: the true pose to 1e-6 m,
+the ticks, the wheel speeds set (1e-9 rad/s: one ulp decides the dead zone, so a wrong bit shows as
+3.14 rad/s), the state, the switch count, fw_direction, d_prog, the controller's (v, w) and heading, sigma
+wherever a sliding test ran (and no sliding test where none ran), and the run must end as recorded (the
+stop, or the crash, at the same step). A wrong step order or a wrong automaton must fail.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from collections import defaultdict
+from pathlib import Path
+
+import mistakes
+import pytest
+from week7_setup import WEEK7
+
+from simiam.control.local_brain import LocalBrain
+from simiam.course.loader import load_submission
+from simiam.simulator import Simulator
+from simiam.world import load_world
+
+ROOT = Path(__file__).resolve().parents[2]
+GOLDEN = ROOT / "tests/data/golden"
+FILES = ("fsm_closed_loop_dt0.05.csv", "fsm_closed_loop_dt0.033.csv")
+POSE_TOL = 1e-6
+TOL = 1e-9
+
+
+def _cases(name: str) -> dict[str, list[dict]]:
+    by_case: dict[str, list[dict]] = defaultdict(list)
+    with (GOLDEN / name).open() as f:
+        for row in csv.DictReader(f):
+            by_case[row["case"]].append(row)
+    return {k: sorted(v, key=lambda r: int(r["step"])) for k, v in by_case.items()}
+
+
+CASES = [(name, case) for name in FILES for case in _cases(name)]
+
+
+def _close(a, b: float, tol: float = TOL) -> bool:
+    return a is not None and abs(a - b) <= tol * max(1.0, abs(b))
+
+
+def _sigma_problem(sup, direction: str, row: dict) -> str | None:
+    recorded = (float(row[f"sigma_{direction}_1"]), float(row[f"sigma_{direction}_2"]))
+    ran = f"sliding_{direction}" in sup.event_log
+    if math.isnan(recorded[0]):
+        return f"sliding_{direction} ran, the original did not test it" if ran else None
+    if not ran:
+        return f"sliding_{direction} did not run, the original tested it"
+    sigma = getattr(sup, f"sigma_{direction}")
+    if not all(_close(float(s), r) for s, r in zip(sigma, recorded, strict=True)):
+        return f"sigma_{direction} {[float(s) for s in sigma]}, recorded {list(recorded)}"
+    return None
+
+
+def step_problems(rec, sup, row: dict) -> list[str]:
+    """What differs between one simulated step and its recorded row."""
+    problems = []
+    err = max(abs(rec.pose[0] - float(row["x"])), abs(rec.pose[1] - float(row["y"])))
+    if err > POSE_TOL:
+        problems.append(f"true pose off by {err:.3g} m")
+    if list(rec.ticks) != [int(row["right_ticks"]), int(row["left_ticks"])]:
+        problems.append(f"ticks {list(rec.ticks)}, recorded {[row['right_ticks'], row['left_ticks']]}")
+    if not (_close(rec.vel_r, float(row["vel_r"])) and _close(rec.vel_l, float(row["vel_l"]))):
+        problems.append(f"wheels ({rec.vel_r!r}, {rec.vel_l!r}), recorded ({row['vel_r']}, {row['vel_l']})")
+    if bool(rec.collided) != (row["crashed"] == "1"):
+        problems.append(f"collided {rec.collided}, recorded crashed={row['crashed']}")
+    if rec.command["state"] != row["state"]:
+        problems.append(f"state {rec.command['state']}, recorded {row['state']}")
+    if sup.switch_count != int(row["switch_count"]):
+        problems.append(f"switch_count {sup.switch_count}, recorded {row['switch_count']}")
+    if sup.fw_direction != row["fw_direction"]:
+        problems.append(f"fw_direction {sup.fw_direction!r}, recorded {row['fw_direction']!r}")
+    if not _close(float(sup.d_prog), float(row["d_prog"]), 1e-12):
+        problems.append(f"d_prog {sup.d_prog!r}, recorded {row['d_prog']}")
+    debug = rec.command["debug"]
+    for key, column in (("v", "ctrl_v"), ("w", "ctrl_w"), ("theta_g", "heading")):
+        if not math.isnan(float(row[column])) and not _close(debug[key], float(row[column])):
+            problems.append(f"controller {key} {debug[key]!r}, recorded {row[column]}")
+    for direction in ("left", "right"):
+        problem = _sigma_problem(sup, direction, row)
+        if problem:
+            problems.append(problem)
+    return problems
+
+
+def replay(folder: Path, name: str, case: str) -> list[str]:
+    """Run one recorded case with the code in `folder`; return what differs (from the first wrong step)."""
+    rows = _cases(name)[case]
+    dt = float(rows[1]["t"]) / int(rows[1]["step"])
+    goal = (float(rows[0]["x_g"]), float(rows[0]["y_g"]))
+    sub = load_submission(folder, WEEK7)
+    assert sub.ok, sub.errors
+    brain = LocalBrain(sub, WEEK7, {"goal": goal})
+    sup = brain.supervisor
+    assert (sup.v, sup.d_prog, sup.fw_direction) == (float(rows[0]["v"]), 10, rows[0]["fw_direction"])
+    sim = Simulator(load_world(WEEK7.world), brain, WEEK7.spec, dt=dt, start=(0.0, 0.0, 0.0))
+    if list(sim.ir_raw) != [int(rows[0][f"ir_raw_{i}"]) for i in range(1, 6)]:
+        return [f"start: IR {list(sim.ir_raw)}"]
+    for row in rows[1:]:
+        rec = sim.step()
+        assert rec.step == int(row["step"])
+        problems = step_problems(rec, sup, row)
+        if problems:
+            return [f"step {rec.step}: {p}" for p in problems]
+    return []
+
+
+@pytest.mark.parametrize(("name", "case"), CASES)
+def test_solutions_reproduce_the_recorded_navigation(name, case):
+    problems = replay(ROOT / "solutions/week7", name, case)
+    assert not problems, f"{name} case {case}: {problems}"
+
+
+def test_the_recordings_end_as_the_golden_readme_says():
+    """Case 1 stops at the goal (dt 0.05: step 553 with 18 switches; dt 0.033: step 830, 20 switches) and
+    case 3 crashes into the trap's bottom bar in avoid_obstacles (steps 58 and 86): the replay above covers
+    every one of these rows, so a match is a match of the endings too."""
+    ends = {}
+    for name, case in CASES:
+        rows = _cases(name)[case]
+        stops = [r for r in rows if r["state"] == "stop"]
+        crash = [r for r in rows if r["crashed"] == "1"]
+        ends[(name, case)] = (int(stops[0]["step"]), stops[0]["switch_count"]) if stops else (
+            "crash", int(crash[0]["step"]), crash[0]["state"])
+    assert ends == {
+        ("fsm_closed_loop_dt0.05.csv", "1"): (553, "18"),
+        ("fsm_closed_loop_dt0.05.csv", "3"): ("crash", 58, "avoid_obstacles"),
+        ("fsm_closed_loop_dt0.033.csv", "1"): (830, "20"),
+        ("fsm_closed_loop_dt0.033.csv", "3"): ("crash", 86, "avoid_obstacles"),
+    }
+
+
+@pytest.mark.parametrize("mistake", ["week7_odometry_last", "week7_wall_on_far_side"])
+def test_a_wrong_step_order_or_automaton_is_caught(tmp_path, mistake):
+    folder = mistakes.build("submissions", mistake, tmp_path, 7)
+    assert replay(folder, "fsm_closed_loop_dt0.05.csv", "1")
