@@ -144,3 +144,39 @@ def test_the_recordings_end_as_the_golden_readme_says():
 def test_a_wrong_step_order_or_automaton_is_caught(tmp_path, mistake):
     folder = mistakes.build("submissions", mistake, tmp_path, 7)
     assert replay(folder, "fsm_closed_loop_dt0.05.csv", "1")
+
+
+# What ../shared/golden/README.md states about every recorded goal, the held-back case 2 included: the step
+# of the first stop (with the switch count and the true distance to the goal, m, 4 decimals) or of the crash
+# (with the state it happened in).
+ENDINGS = {
+    0.05: {(1.1, 1.1): ("stop", 553, 18, 0.0444), (-1.0, 1.0): ("stop", 865, 17, None),
+           (1.0, -1.0): ("crash", 58, "avoid_obstacles")},
+    0.033: {(1.1, 1.1): ("stop", 830, 20, 0.0523), (-1.0, 1.0): ("crash", 246, "avoid_obstacles"),
+            (1.0, -1.0): ("crash", 86, "avoid_obstacles")},
+}
+
+
+def ending(folder: Path, dt: float, goal: tuple[float, float]) -> tuple:
+    sub = load_submission(folder, WEEK7)
+    assert sub.ok, sub.errors
+    brain = LocalBrain(sub, WEEK7, {"goal": goal})
+    sim = Simulator(load_world(WEEK7.world), brain, WEEK7.spec, dt=dt)
+    for _ in range(int(round(60.0 / dt))):
+        rec = sim.step()
+        if rec.collided:
+            return ("crash", rec.step, rec.command["state"])
+        if rec.command["state"] == "stop":
+            x, y, _ = sim.pose
+            distance = round(math.hypot(x - goal[0], y - goal[1]), 4)
+            return ("stop", rec.step, brain.supervisor.switch_count, distance)
+    return ("running after 60 s",)
+
+
+@pytest.mark.parametrize("dt", sorted(ENDINGS))
+def test_solutions_end_every_recorded_goal_as_the_original(dt):
+    for goal, expected in ENDINGS[dt].items():
+        got = ending(ROOT / "solutions/week7", dt, goal)
+        assert got[:3] == expected[:3], (goal, got)
+        if len(expected) > 3 and expected[3] is not None:
+            assert got[3] == expected[3], (goal, got)
