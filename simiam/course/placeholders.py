@@ -42,11 +42,17 @@ class Placeholder:
         return "".join(f"{indent}{ln}\n" if ln.strip() else "\n" for ln in lines)
 
 
-def placeholder_for(file: str, scope: str, occurrence: int = 1) -> Placeholder | None:
-    """The declared block of (file, scope, occurrence) in any week, or None."""
+def placeholder_for(file: str, scope: str, occurrence: int = 1,
+                    week: int | None = None) -> Placeholder | None:
+    """The declared block of (file, scope, occurrence), or None.
+
+    A later week may declare a new block where an earlier week had one (week 7's automaton fills the
+    place of week 5's switching in `QBSupervisor.execute`): the block of the latest week up to `week` (any
+    week when None) is the one meant."""
     from simiam.course.weeks import all_blocks
 
-    for p in all_blocks():
-        if p.key == (file, scope, occurrence):
-            return p
-    return None
+    found = None
+    for p in all_blocks():  # in week order
+        if p.key == (file, scope, occurrence) and (week is None or p.week <= week):
+            found = p
+    return found

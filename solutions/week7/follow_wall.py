@@ -1,15 +1,20 @@
-"""FollowWall: drive along a wall at the distance d_fw, the wall on the left or on the right (week 6).
+"""FollowWall: drive along a wall at the distance d_fw, with the wall on the left or on the right.
 
-Two IR points on the wall give a piece of it: u_fw_t runs along the wall (from p_1 to p_2), u_fw_p from
-the robot to the nearest point of the wall's line. Steering along u_fw = d_fw * u_fw_tp + u_fw_pp keeps
-the robot moving along the wall (u_fw_tp) and pulls it to the distance d_fw (u_fw_pp is zero there).
+Two IR points on the wall estimate it as a line: p_1 and p_2, the points of the two sensors on the chosen
+side that measure the shortest distances (sensors 1, 2, 3 for the left, 5, 4, 3 for the right; index 0..4
+here). Along the wall: u_fw_t = p_2 - p_1, and its unit vector u_fw_tp. Toward the wall: u_fw_p, the
+vector from the robot (u_p) to the nearest point of that line (through u_a = p_1); its length is the
+distance to the wall. u_fw_pp = u_fw_p - d_fw * u_fw_p/|u_fw_p| points toward the point d_fw from the wall
+(it is zero at distance d_fw). The robot steers along u_fw = d_fw * u_fw_tp + u_fw_pp.
 
-inputs.direction says which side the wall is on: "left" uses sensors 1-3, "right" sensors 5-3 ("" is
-treated as "left", as the original did); inputs.d_fw is the distance to keep (m).
+Student block (week 6) and the placeholders the stub gets:
+  execute: p_1, p_2 (the two wall points), u_fw_t, u_fw_tp, u_a, u_p, u_fw_p, u_fw_pp, u_fw.
+    Placeholder: p_1 = p_2 = the point of sensor 0 (right) or 4 (left), and every vector zero, so the
+    robot drives straight ahead (heading 0).
 
-Student block (week 6, shipped filled in from week 7) and the placeholder the stub would get:
-  p_1, p_2 = the point of sensor 1 (left) or 5 (right) twice, and every vector [0, 0] (the robot turns
-  to the heading 0).
+The sp14 code kept u_fw_p/|u_fw_p| in its variable u_fw_pp and computed
+u_fw = d_fw*u_fw_tp + (u_fw_p - d_fw*u_fw_pp); the course's u_fw_pp (zero at d_fw) is written here so
+that it rounds the same way, and the run matches the recorded one step for step.
 """
 
 import math
@@ -18,14 +23,20 @@ import numpy as np
 
 from simiam.control import Controller, norm
 
+from .avoid_obstacles import AvoidObstacles
+
 
 class FollowWall(Controller):
-    """Steers along u_fw to follow the wall on inputs.direction at inputs.d_fw; v = inputs.v."""
+    """Steers along u_fw: the wall on the side inputs.direction ("left" or "right"), at inputs.d_fw."""
+
+    # The IR points in the world frame come from the week-4 geometry, as in AvoidObstacles.
+    apply_sensor_geometry = AvoidObstacles.apply_sensor_geometry
+    get_transformation_matrix = AvoidObstacles.get_transformation_matrix
 
     def __init__(self):
         super().__init__("follow_wall")
 
-        # gains of the PID regulator
+        # gains of the PID regulator (the course's: a P regulator)
         self.Kp = 2
         self.Ki = 0
         self.Kd = 0
@@ -34,45 +45,57 @@ class FollowWall(Controller):
         self.E_k = 0
         self.e_k_1 = 0
 
-        # the vectors of the last step, for the viewer
+        # what the viewer and the checks read after each call
+        self.p_1 = None
+        self.p_2 = None
         self.u_fw_t = None
+        self.u_fw_tp = None
         self.u_fw_p = None
+        self.u_fw_pp = None
         self.u_fw = None
 
     def execute(self, robot, state_estimate, inputs, dt):
-        """Return (v, w) that steer the robot along the wall."""
+        """Return (v, w) that keep the robot at inputs.d_fw from the wall on the side inputs.direction."""
         x, y, theta = state_estimate.unpack()
 
-        # the five IR distances, and the points they measure in the world frame
+        # the five IR distances, and the points they measure (columns, homogeneous coordinates)
         ir_distances = robot.get_ir_distances()
-        ir_distances_wf = self.apply_sensor_geometry(robot, ir_distances, state_estimate)
+        ir_distances_rf, ir_distances_wf = self.apply_sensor_geometry(robot, ir_distances, state_estimate)
+        ir_distances_wf = np.asarray(ir_distances_wf)
 
+        direction = inputs.direction  # "left" or "right" ("" counts as left, as in the original)
         d_fw = inputs.d_fw
 
+        # Estimate the wall from two IR points, then the vector to steer along.
         # START CODE BLOCK
-        # 1. The two sensors of the wall's side that read the shortest distances (ties: the order below,
-        #    as MATLAB's stable sort); p_1 is the rear one, p_2 the front one, so u_fw_t runs forward.
-        if inputs.direction == "right":
-            candidates = [4, 3, 2]  # sensors 5, 4, 3
+        # The two sensors on the chosen side that see the wall closest. sorted() keeps the candidates'
+        # order on ties, as the original's sort did: left prefers 0, 1, 2; right prefers 4, 3, 2.
+        if direction == "right":
+            candidates = [4, 3, 2]
         else:
-            candidates = [0, 1, 2]  # sensors 1, 2, 3
-        s_1, s_2 = sorted(candidates, key=lambda i: ir_distances[i])[0:2]
-        if inputs.direction == "right":
-            p_1 = ir_distances_wf[0:2, max(s_1, s_2)]
-            p_2 = ir_distances_wf[0:2, min(s_1, s_2)]
+            candidates = [0, 1, 2]
+        closest = sorted(candidates, key=lambda i: ir_distances[i])[:2]
+        # p_1 -> p_2 runs along the wall in the robot's direction of travel: for the left side from the
+        # lower sensor index to the higher, for the right side from the higher to the lower.
+        if direction == "right":
+            i_1, i_2 = max(closest), min(closest)
         else:
-            p_1 = ir_distances_wf[0:2, min(s_1, s_2)]
-            p_2 = ir_distances_wf[0:2, max(s_1, s_2)]
-        u_fw_t = p_2 - p_1
+            i_1, i_2 = min(closest), max(closest)
+        p_1 = ir_distances_wf[0:2, i_1]
+        p_2 = ir_distances_wf[0:2, i_2]
 
-        # 2. u_fw_p: from the robot (u_p) to the nearest point of the wall's line through u_a = p_1.
+        # along the wall
+        u_fw_t = p_2 - p_1
         u_fw_tp = u_fw_t / norm(u_fw_t)
+
+        # from the robot to the nearest point of the wall's line
         u_a = p_1
         u_p = np.array([x, y])
         u_fw_p = (u_a - u_p) - ((u_a - u_p) @ u_fw_tp) * u_fw_tp
 
-        # 3. u_fw_pp is zero at the distance d_fw from the wall; u_fw combines it with u_fw_tp.
+        # toward the point d_fw away from the wall
         u_fw_pp = u_fw_p - d_fw * (u_fw_p / norm(u_fw_p))
+
         u_fw = d_fw * u_fw_tp + u_fw_pp
         # END CODE BLOCK
 
@@ -91,29 +114,10 @@ class FollowWall(Controller):
         self.E_k = e_I
         self.e_k_1 = e_k
 
-        # what the viewer draws
+        # what the viewer draws and the checks read
         self.theta_g = theta_fw
-        self.u_fw_t = u_fw_t
-        self.u_fw_p = u_fw_p
-        self.u_fw = u_fw
+        self.p_1, self.p_2 = p_1, p_2
+        self.u_fw_t, self.u_fw_tp = u_fw_t, u_fw_tp
+        self.u_fw_p, self.u_fw_pp, self.u_fw = u_fw_p, u_fw_pp, u_fw
         self.ir_distances_wf = ir_distances_wf
         return inputs.v, w
-
-    def apply_sensor_geometry(self, robot, ir_distances, state_estimate):
-        """The IR points in the world frame: a 3x5 array, one column (x, y, 1) a sensor."""
-        ir_distances_rf = np.zeros((3, 5))
-        for i in range(5):
-            x_s, y_s, theta_s = robot.ir_array[i].location.unpack()
-            T = self.get_transformation_matrix(x_s, y_s, theta_s)
-            ir_distances_rf[:, i] = T @ np.array([ir_distances[i], 0.0, 1.0])
-
-        x, y, theta = state_estimate.unpack()
-        return self.get_transformation_matrix(x, y, theta) @ ir_distances_rf
-
-    def get_transformation_matrix(self, x, y, theta):
-        """T(x, y, theta): rotate by theta, then translate by (x, y) (3x3, homogeneous coordinates)."""
-        return np.array([
-            [math.cos(theta), -math.sin(theta), x],
-            [math.sin(theta), math.cos(theta), y],
-            [0.0, 0.0, 1.0],
-        ])
