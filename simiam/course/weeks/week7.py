@@ -95,4 +95,5 @@ WEEK = Week(
     dt=0.05,
     debug_signals=("v", "w", "theta_g", "u_ao", "u_gtg", "u_fw_t", "u_fw_p", "ir_points_wf"),
     summary=("goal",),
+    reference_earlier=True,
 )
