@@ -29,11 +29,11 @@ under d_unsafe "unsafe". These are the course's starting values; tune them with 
         "qb_supervisor.py",
         "QBSupervisor.execute",
         hint="""TODO (week 7, part 3): the automaton. Each step pick the state from the events
-(self.check_event(name)) and self.switch_to_state(name): at_goal -> stop; unsafe ->
-avoid_obstacles; no progress toward the goal and at an obstacle -> follow_wall (set
-self.fw_direction to "left" or "right" first, and self.set_progress_point()); following a
-wall, progress_made and not sliding on that side (sliding_left / sliding_right) ->
-go_to_goal. Until then the robot drives to the goal and stops there (or hits the trap).""",
+(self.check_event(name)) with self.switch_to_state(name): at_goal -> stop; unsafe ->
+avoid_obstacles; going to the goal with progress_made -> self.set_progress_point() and keep
+going; no progress and at_obstacle -> set self.fw_direction ("left" or "right", the side of
+the obstacle) and follow_wall; following a wall, progress_made and not sliding on that side
+(sliding_left / sliding_right) -> go_to_goal. Until then the robot drives to the goal.""",
         code='if self.check_event("at_goal"):\n    self.switch_to_state("stop")',
     ),
     Placeholder(
