@@ -47,12 +47,15 @@ def placeholder_for(file: str, scope: str, occurrence: int = 1,
     """The declared block of (file, scope, occurrence), or None.
 
     A later week may declare a new block where an earlier week had one (week 7's automaton fills the
-    place of week 5's switching in `QBSupervisor.execute`): the block of the latest week up to `week` (any
-    week when None) is the one meant."""
+    place of week 5's switching in `QBSupervisor.execute`): in `week`, the block of the latest week up to
+    it is the one meant. Without a week: the first week's."""
     from simiam.course.weeks import all_blocks
 
     found = None
     for p in all_blocks():  # in week order
-        if p.key == (file, scope, occurrence) and (week is None or p.week <= week):
-            found = p
+        if p.key == (file, scope, occurrence):
+            if week is None:
+                return p
+            if p.week <= week:
+                found = p
     return found

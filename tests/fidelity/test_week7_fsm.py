@@ -180,3 +180,43 @@ def test_solutions_end_every_recorded_goal_as_the_original(dt):
         assert got[:3] == expected[:3], (goal, got)
         if len(expected) > 3 and expected[3] is not None:
             assert got[3] == expected[3], (goal, got)
+
+
+# ../shared/reference/original-simulator.md section 11: the release's week-7 code as shipped (the automaton
+# only stops at the goal) in the final world, goal (1.1, 1.1), dt 0.05: true pose, estimate, ticks, wheel
+# speeds set, raw IR at some steps, and the crash into the trap's top bar at step 29 (t = 1.45 s).
+SECTION_11 = {
+    1: ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0, 0), (13.2164, 0.0), (296, 177, 133, 133, 133)),
+    2: ((0.010655, 0.001157, 0.216390), (0.012763, 0.0, 0.257183), (2, 0), (9.5137, 3.1416),
+        (274, 233, 133, 133, 133)),
+    3: ((0.020564, 0.003884, 0.320719), (0.018934, 0.001623, 0.385775), (3, 0), (8.0456, 3.1416),
+        (262, 260, 133, 133, 133)),
+    5: ((0.037367, 0.011023, 0.483272), (0.036671, 0.008827, 0.514367), (5, 1), (6.5364, 3.1416),
+        (241, 302, 133, 133, 133)),
+    6: ((0.044225, 0.014868, 0.538854), (0.047783, 0.015106, 0.514367), (6, 2), (6.6447, 0.0),
+        (234, 319, 154, 133, 133)),
+    10: ((0.065982, 0.032278, 0.742240), (0.068660, 0.029723, 0.771550), (9, 3), (4.7765, 4.4543),
+         (205, 391, 249, 154, 133)),
+    12: ((0.076910, 0.042553, 0.781108), (0.078341, 0.037999, 0.771550), (10, 4), (4.7818, 4.4490),
+         (208, 433, 286, 160, 133)),
+}
+
+
+def test_the_stub_reproduces_the_release_run_of_section_11():
+    """The untouched stub is the release's week-7 code: it drives for the goal and hits the trap at 1.45 s."""
+    sub = load_submission(ROOT / "assignments/week7", WEEK7)
+    assert sub.ok, sub.errors
+    brain = LocalBrain(sub, WEEK7, {"goal": (1.1, 1.1)})
+    sim = Simulator(load_world(WEEK7.world), brain, WEEK7.spec, dt=0.05)
+    for _ in range(60):
+        rec = sim.step()
+        if rec.step in SECTION_11:
+            pose, estimate, ticks, wheels, raw = SECTION_11[rec.step]
+            assert [round(c, 6) for c in rec.pose] == list(pose), rec.step
+            assert [round(c, 6) for c in rec.command["estimate"]] == list(estimate), rec.step
+            assert tuple(rec.ticks) == ticks and tuple(rec.ir_raw) == raw, rec.step
+            assert (round(rec.vel_r, 4), round(rec.vel_l, 4)) == wheels, rec.step
+        if rec.collided:
+            break
+    assert (rec.step, round(rec.t, 2)) == (29, 1.45)
+    assert [round(c, 4) for c in rec.pose] == [0.1663, 0.1334, 0.7918]
