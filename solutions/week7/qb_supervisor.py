@@ -10,11 +10,11 @@ progress_made, sliding_left and sliding_right.
 
 Student blocks (week 7) and the placeholders the stub gets:
   1. __init__, the thresholds: `self.d_at_obs = 0.10`, `self.d_unsafe = 0.05` (the course's stub values).
-  2. execute, the automaton: `if self.check_event("at_goal"): self.switch_to_state("stop")`
-     (the robot goes to the goal and stays in the trap).
+  2. execute, the automaton: `if self.check_event("at_goal"): self.switch_to_state("stop")` and
+     `self.fw_direction = ""` (the robot drives for the goal and hits the trap).
   3. sliding_left and 4. sliding_right: `sigma = np.zeros(2)` (never sliding).
   5. progress_made: `progress = True` (always progress, so never following a wall).
-  6. set_progress_point: `pass` (d_prog stays at its start, 10 m).
+  6. set_progress_point: `self.d_prog = self.d_prog` (d_prog stays at its start, 10 m).
 Shipped filled in: update_odometry (week 2) and the follow-wall settings d_fw and fw_direction (week 6).
 
 Two choices of this solution, both the course author's own (the reference the recorded runs come from):

@@ -51,7 +51,7 @@ def _close(a, b: float, tol: float = TOL) -> bool:
 
 def _sigma_problem(sup, direction: str, row: dict) -> str | None:
     recorded = (float(row[f"sigma_{direction}_1"]), float(row[f"sigma_{direction}_2"]))
-    ran = f"sliding_{direction}" in sup.event_log
+    ran = f"sliding_{direction}" in sup.event_values
     if math.isnan(recorded[0]):
         return f"sliding_{direction} ran, the original did not test it" if ran else None
     if not ran:

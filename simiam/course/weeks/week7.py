@@ -34,7 +34,8 @@ avoid_obstacles; going to the goal with progress_made -> self.set_progress_point
 going; no progress and at_obstacle -> set self.fw_direction ("left" or "right", the side of
 the obstacle) and follow_wall; following a wall, progress_made and not sliding on that side
 (sliding_left / sliding_right) -> go_to_goal. Until then the robot drives to the goal.""",
-        code='if self.check_event("at_goal"):\n    self.switch_to_state("stop")',
+        code=('if self.check_event("at_goal"):\n    self.switch_to_state("stop")\n'
+              'self.fw_direction = ""  # no wall to follow'),
     ),
     Placeholder(
         "qb_supervisor.py",
@@ -42,7 +43,7 @@ the obstacle) and follow_wall; following a wall, progress_made and not sliding o
         hint="""TODO (week 7, part 1): remember how close to the goal the robot has come: self.d_prog
 becomes the distance from the estimate (x, y) to self.goal if that is smaller.
 Until then d_prog stays at its start, 10 m.""",
-        code="pass",
+        code="self.d_prog = self.d_prog",
     ),
     Placeholder(
         "qb_supervisor.py",
@@ -93,7 +94,10 @@ WEEK = Week(
     settings=SupervisorSettings(v=0.15, goal=(1.1, 1.1), d_stop=0.05),
     seconds=60.0,
     dt=0.05,
-    debug_signals=("v", "w", "theta_g", "u_ao", "u_gtg", "u_fw_t", "u_fw_p", "ir_points_wf"),
+    # the automaton's trace: the state (always recorded), each event as checked in the step, the switches
+    debug_signals=("v", "w", "theta_g", "u_ao", "u_gtg", "u_fw_t", "u_fw_p", "ir_points_wf", "fw_direction",
+                   "d_prog", "switches", "at_goal", "at_obstacle", "unsafe", "obstacle_cleared",
+                   "progress_made", "sliding_left", "sliding_right"),
     summary=("goal",),
     reference_earlier=True,
 )
