@@ -145,8 +145,9 @@ def _course_earlier_blocks(week: int, spliced: Path) -> list[str]:
         for b in blocks:
             spec = placeholder_for(path.name, b.scope, b.occurrence, week)
             ref = course.get(b.key)
-            earlier = spec is not None and spec.week < week and ref is not None
-            if not earlier or fingerprint(ref.body) == fingerprint(b.body):
+            if spec is None or spec.week >= week or ref is None:
+                continue
+            if fingerprint(ref.body) == fingerprint(b.body):
                 continue
             bodies[b.ordinal] = ref.body
             notices.append(f"{path.name}: {b.describe()} (week {spec.week}) ran as the course ships it this "
