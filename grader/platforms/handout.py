@@ -85,6 +85,8 @@ def _reference_lines(week: int, own: set[str], course: Path) -> set[str]:
             if spec is not None and spec.week == week:
                 reference.update(ln.strip() for ln in block.body.splitlines())
                 given.update(ln.strip() for ln in spec.body(block.indent).splitlines())
+            elif spec is not None:  # an earlier week's block: the handout ships it filled in
+                given.update(ln.strip() for ln in block.body.splitlines())
         given.update(ln.strip() for n, ln in enumerate(solution.splitlines(), 1) if n not in inside)
     return {ln for ln in reference - given if len(ln) >= _MIN_LEAK_CHARS and not ln.startswith("#")}
 
