@@ -264,7 +264,9 @@ def transitions(ctx: Context) -> Outcome:
         events, answer = _step(ctx, situation, drawn)
         state, direction, _, expected, words = SITUATIONS[situation]
         on = ", ".join(f"{k}={'True' if v else 'False'}" for k, v in events.items())
-        where = f"in state {state}" + (f" (fw_direction {direction!r})" if direction else "") + f" with {on}"
+        distances = ", ".join(fmt(d) for d in (_NEAR_RIGHT if "right" in situation else _NEAR_LEFT))
+        where = (f"in state {state}" + (f" (fw_direction {direction!r})" if direction else "")
+                 + f" with {on} and the IR distances ({distances})")
         got = answer.get("state")
         shown = got if isinstance(got, str) else "no state"
         if expected == "not avoid_obstacles":
