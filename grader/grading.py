@@ -27,7 +27,6 @@ from grader.sandbox.limits import Limits
 from grader.sandbox.output import cut_middle
 from grader.sandbox.session import StudentSession
 from simiam.course.shipped import files_to_write, missing_note, shipped_version
-from simiam.course.weeks import get_week
 
 DEFAULT_SEED = 2014
 ROOT = Path(__file__).resolve().parents[1]
@@ -122,39 +121,7 @@ def _splice(week: int, submission: Path, tmp: Path) -> tuple[Path, dict[str, lis
         if not problems[name]:
             del problems[name]
     notices.extend(f"{name}: not part of the assignment (ignored)" for name in report.extra_files)
-    if get_week(week).reference_earlier:
-        notices.extend(_course_earlier_blocks(week, spliced))
     return spliced, problems, notices
-
-
-def _course_earlier_blocks(week: int, spliced: Path) -> list[str]:
-    """Earlier weeks' blocks of the spliced files as the course ships them this week (from solutions/, where
-    a checkout is at hand): the week's checks then grade only its own blocks. A notice per block replaced."""
-    from simiam.course.blocks import find_blocks, fingerprint, replace_bodies
-    from simiam.course.placeholders import placeholder_for
-
-    notices = []
-    for path in sorted(spliced.glob("*.py")):
-        shipped = shipped_version(week, path.name, ROOT)
-        if shipped is None:
-            continue
-        text = path.read_text(encoding="utf-8")
-        blocks = find_blocks(text, path.name)
-        course = {b.key: b for b in find_blocks(shipped, path.name)}
-        bodies = {}
-        for b in blocks:
-            spec = placeholder_for(path.name, b.scope, b.occurrence, week)
-            ref = course.get(b.key)
-            if spec is None or spec.week >= week or ref is None:
-                continue
-            if fingerprint(ref.body) == fingerprint(b.body):
-                continue
-            bodies[b.ordinal] = ref.body
-            notices.append(f"{path.name}: {b.describe()} (week {spec.week}) ran as the course ships it this "
-                           f"week, not your version: week {week} grades its own blocks")
-        if bodies:
-            path.write_text(replace_bodies(text, blocks, bodies), encoding="utf-8")
-    return notices
 
 
 def _load_problems(week: int, loaded: dict) -> dict[str, list[str]]:

@@ -8,7 +8,8 @@ Two choices are accepted wherever the course allowed both (see assignments/week7
 - the automaton: the author's (progress first, the wall's side from the IR sums) or the manual's (the
   side from the sliding tests): only transitions on which both agree are probed.
 A singular sliding system (u_gtg and u_ao parallel, or u_gtg = 0 at the goal) must not stop the run; at the
-goal (u_gtg = 0) the robot is not sliding.
+goal (u_gtg = 0) the robot is not sliding. The navigation runs use the course's versions of the earlier
+weeks' parts (grader.earlier), with the student's week-7 blocks in them.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from __future__ import annotations
 import math
 import random
 
-from grader import scenarios
+from grader import earlier, scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import fmt, number, vector
 from grader.domains import Floats, Lists, SampledFrom
@@ -316,10 +317,12 @@ def navigate(ctx: Context, check_id: str, world: World, goal: tuple[float, float
              seconds: float) -> tuple[bool, str, dict, scenarios.Run]:
     """One run to `goal`: reached when the TRUE position comes within 0.05 m of it, with no collision."""
     settings = ctx.config.settings.with_changes(goal=tuple(goal)).as_dict()
-    r = scenarios.run(ctx, label, settings, seconds, world=world, goal=goal, goal_radius=D_GOAL)
+    session, note = earlier.scenario_session(ctx)  # earlier weeks' parts: the course's versions
+    r = scenarios.run(ctx, label, settings, seconds, world=world, goal=goal, goal_radius=D_GOAL,
+                      session=session)
     scenarios.keep(ctx, check_id, r)
     details = {**r.metrics, "problem": r.problem, "traces": scenarios.trace_keys([r])}
-    where = f"goal ({goal[0]:.2f}, {goal[1]:.2f})"
+    where = f"goal ({goal[0]:.2f}, {goal[1]:.2f})" + (f" ({note})" if note else "")
     if r.problem:
         return False, f"{where}: {r.problem}", details, r
     if r.collision is not None:

@@ -78,10 +78,6 @@ class Week:
     - `debug_signals`: the names of the debug values the week's trace carries (u_ao, theta_g, ...), each
       declared in simiam/signals.py (its kind and where the brain reads it).
     - `summary`: the lines `simiam run` prints after the run, by name ("heading", "goal", "path", ...).
-    - `reference_earlier`: grading runs earlier weeks' blocks as the course ships them this week (from
-      solutions/ where a checkout is at hand, as in official grading), so a mistake the student made in an
-      earlier week, or in a block shipped filled in, costs nothing here; the feedback names each block
-      that was replaced.
     """
 
     number: int
@@ -98,7 +94,6 @@ class Week:
     start: tuple[float, float, float] = (0.0, 0.0, 0.0)
     debug_signals: tuple[str, ...] = ()
     summary: tuple[str, ...] = ("path",)
-    reference_earlier: bool = False
 
     def __post_init__(self) -> None:
         where = f"week {self.number}"

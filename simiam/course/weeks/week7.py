@@ -99,5 +99,4 @@ WEEK = Week(
                    "d_prog", "switches", "at_goal", "at_obstacle", "unsafe", "obstacle_cleared",
                    "progress_made", "sliding_left", "sliding_right"),
     summary=("goal",),
-    reference_earlier=True,
 )
