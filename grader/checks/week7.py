@@ -373,7 +373,7 @@ CHECKS = [
     Check("week7.fsm.transitions", "the automaton's transitions on synthetic events", "property", 2.0,
           transitions, ALL),
     Check("week7.navigate.release_goal", "out of the trap to the goal (1.1, 1.1) in 60 s, no collision",
-          "scenario", 2.0, release_goal, ALL),
+          "scenario", 2.0, release_goal, ALL, plots=("trajectory", "states", "signals:d_prog,switches")),
     Check("week7.navigate.other_goals", "other goals and start headings drawn per seed", "scenario", 1.5,
-          other_goals, ALL, visibility="hidden"),
+          other_goals, ALL, visibility="hidden", plots=("trajectory", "states")),
 ]
