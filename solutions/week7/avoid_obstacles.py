@@ -4,7 +4,7 @@ Each IR distance d_i is a point (d_i, 0) in its sensor's frame; the sensor's mou
 the robot frame, the estimated robot pose into the world frame (the manual, section 4.4). The weighted
 vectors from the robot to these points add up to u_ao, and a PID regulator steers along it.
 
-Student blocks (week 4) and the placeholders the stub gets:
+Student blocks (week 4, shipped filled in from week 5) and the placeholders the week-4 stub gets:
   1. __init__ gains (tunable, as the manual allows). Placeholder: the course's `self.Kp = 4`,
      `self.Ki = 0.01`, `self.Kd = 0.1`.
   2. execute: sensor_gains, u_i, u_ao, theta_ao, e_k. Placeholder: `sensor_gains = [0, 0, 0, 0, 0]`,
@@ -30,8 +30,8 @@ class AvoidObstacles(Controller):
 
         # gains of the PID regulator
         # START CODE BLOCK
-        # The course's gains in weeks 5 to 7 (the original's 4, 0.01, 0.01), with which the week-7
-        # navigation reproduces the original's recorded runs.
+        # The gains the course shipped from week 5 on (the sp14 release), with which the recorded
+        # week-5 runs were made.
         self.Kp = 4
         self.Ki = 0.01
         self.Kd = 0.01

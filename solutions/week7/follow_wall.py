@@ -1,20 +1,20 @@
 """FollowWall: drive along a wall at the distance d_fw, with the wall on the left or on the right.
 
-Two IR points on the wall estimate it as a line: p_1 and p_2, the points of the two sensors on the chosen
-side that measure the shortest distances (sensors 1, 2, 3 for the left, 5, 4, 3 for the right; index 0..4
-here). Along the wall: u_fw_t = p_2 - p_1, and its unit vector u_fw_tp. Toward the wall: u_fw_p, the
-vector from the robot (u_p) to the nearest point of that line (through u_a = p_1); its length is the
-distance to the wall. u_fw_pp = u_fw_p - d_fw * u_fw_p/|u_fw_p| points toward the point d_fw from the wall
-(it is zero at distance d_fw). The robot steers along u_fw = d_fw * u_fw_tp + u_fw_pp.
+The IR points in the world frame come from AvoidObstacles' apply_sensor_geometry (week 4). Two IR points
+on the wall estimate it as a line: p_1 and p_2, the points of the two sensors on the chosen side that
+measure the shortest distances (sensors 1, 2, 3 for the left, 5, 4, 3 for the right; index 0..4 here).
+Along the wall: u_fw_t = p_2 - p_1, and its unit vector u_fw_tp. Toward the wall: u_fw_p, the vector from
+the robot (u_p) to the nearest point of that line (through u_a = p_1); its length is the distance to the
+wall. u_fw_pp = u_fw_p - d_fw * u_fw_p/|u_fw_p| points toward the point d_fw from the wall (it is zero at
+distance d_fw). The robot steers along u_fw = d_fw * u_fw_tp + u_fw_pp.
 
 Student block (week 6) and the placeholders the stub gets:
   execute: p_1, p_2 (the two wall points), u_fw_t, u_fw_tp, u_a, u_p, u_fw_p, u_fw_pp, u_fw.
-    Placeholder: p_1 = p_2 = the point of sensor 0 (right) or 4 (left), and every vector zero, so the
-    robot drives straight ahead (heading 0).
+    Placeholder: p_1 = p_2 = the point of sensor 0 and every vector zero, so u_fw is zero and the robot
+    turns to heading 0 (along the x axis), whatever it sees.
 
-The sp14 code kept u_fw_p/|u_fw_p| in its variable u_fw_pp and computed
-u_fw = d_fw*u_fw_tp + (u_fw_p - d_fw*u_fw_pp); the course's u_fw_pp (zero at d_fw) is written here so
-that it rounds the same way, and the run matches the recorded one step for step.
+The sp14 code kept the unit vector u_fw_p/|u_fw_p| in a variable named u_fw_pp; here u_fw_pp is the
+manual's vector toward the point d_fw from the wall (zero at d_fw).
 """
 
 import math
@@ -29,10 +29,6 @@ from .avoid_obstacles import AvoidObstacles
 class FollowWall(Controller):
     """Steers along u_fw: the wall on the side inputs.direction ("left" or "right"), at inputs.d_fw."""
 
-    # The IR points in the world frame come from the week-4 geometry, as in AvoidObstacles.
-    apply_sensor_geometry = AvoidObstacles.apply_sensor_geometry
-    get_transformation_matrix = AvoidObstacles.get_transformation_matrix
-
     def __init__(self):
         super().__init__("follow_wall")
 
@@ -44,6 +40,9 @@ class FollowWall(Controller):
         # memory: accumulated error and previous error
         self.E_k = 0
         self.e_k_1 = 0
+
+        # the IR points in the world frame, as the avoid_obstacles state computes them (week 4)
+        self.geometry = AvoidObstacles()
 
         # what the viewer and the checks read after each call
         self.p_1 = None
@@ -60,7 +59,7 @@ class FollowWall(Controller):
 
         # the five IR distances, and the points they measure (columns, homogeneous coordinates)
         ir_distances = robot.get_ir_distances()
-        ir_distances_rf, ir_distances_wf = self.apply_sensor_geometry(robot, ir_distances, state_estimate)
+        _, ir_distances_wf = self.geometry.apply_sensor_geometry(robot, ir_distances, state_estimate)
         ir_distances_wf = np.asarray(ir_distances_wf)
 
         direction = inputs.direction  # "left" or "right" ("" counts as left, as in the original)
@@ -93,7 +92,8 @@ class FollowWall(Controller):
         u_p = np.array([x, y])
         u_fw_p = (u_a - u_p) - ((u_a - u_p) @ u_fw_tp) * u_fw_tp
 
-        # toward the point d_fw away from the wall
+        # toward the point d_fw away from the wall (d_fw times the unit vector, in this order, rounds as
+        # the original did: the recorded runs are matched step for step)
         u_fw_pp = u_fw_p - d_fw * (u_fw_p / norm(u_fw_p))
 
         u_fw = d_fw * u_fw_tp + u_fw_pp
