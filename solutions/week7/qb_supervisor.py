@@ -151,7 +151,7 @@ class QBSupervisor(Supervisor):
         x, y, theta = self.state_estimate.unpack()
 
         # START CODE BLOCK
-        self.d_prog = min(norm((x - self.goal[0], y - self.goal[1])), self.d_prog)
+        self.d_prog = min(norm((self.goal[0] - x, self.goal[1] - y)), self.d_prog)
         # END CODE BLOCK
 
     # -- events ---------------------------------------------------------------------------------
