@@ -138,6 +138,36 @@ def _body(name: str, args: dict[str, Any]) -> str | None:
             "sup = sub.module('qb_supervisor').QBSupervisor()\n"
             "print('d_fw =', sup.d_fw, ' fw_direction =', repr(sup.fw_direction))\n"
         )
+    return _week7_body(name, args)
+
+
+def _week7_body(name: str, args: dict[str, Any]) -> str | None:
+    """Week 7's probes (grader/inside/probes_week7.py) as Python a student can run."""
+    head = ["import numpy as np",
+            "sup = sub.module('qb_supervisor').QBSupervisor()",
+            f"sup.attach_robot(robot, Pose2D(*{_value(args.get('estimate') or [0.0, 0.0, 0.0])}))"]
+    if name == "week7_sliding":
+        vectors = ", ".join(f"np.array({_value(args[k])})" for k in ("u_gtg", "u_ao", "u_fw"))
+        return "\n".join(head + [
+            f"sup.sliding_vectors = lambda side: ({vectors})  # u_gtg, u_ao, u_fw of the failing case",
+            f"print('sliding:', sup.check_event({'sliding_' + args['direction']!r}), "
+            f"'sigma:', sup.sigma_{args['direction']})"]) + "\n"
+    if name in ("week7_progress", "week7_progress_point"):
+        call = ("print('progress_made:', sup.check_event('progress_made'))" if name == "week7_progress"
+                else "sup.set_progress_point()\nprint('d_prog:', sup.d_prog)")
+        return "\n".join(head + [f"sup.goal = tuple({_value(args['goal'])})",
+                                  f"sup.d_prog = {args['d_prog']!r}", call]) + "\n"
+    if name == "week7_step":
+        events = {k: bool(v) for k, v in args["events"].items()}
+        return "\n".join(head + [
+            f"robot.get_ir_distances = lambda: np.array({_value(args['distances'])})",
+            f"sup.switch_to_state({args['state']!r})",
+            f"sup.fw_direction = {args['fw_direction']!r}",
+            f"events = {events!r}  # what each check_event(name) answers",
+            "sup.events = {name: (lambda value=value: value) for name, value in events.items()}",
+            f"sup.execute({args.get('dt', 0.05)!r})",
+            "print('state after one step:', sup.current_state, 'fw_direction:', repr(sup.fw_direction))",
+        ]) + "\n"
     return None
 
 

@@ -33,6 +33,10 @@ __all__ = [
     "transformation_matrix",
     "uni_to_diff",
     "wall_settings",
+    "week7_progress",
+    "week7_progress_point",
+    "week7_sliding",
+    "week7_step",
 ]
 
 _MAX_ITEMS = 64  # a probe answer is never bigger than a few 3x5 matrices or a tick sequence
@@ -215,6 +219,12 @@ def avoid_obstacles(sub, week: int, distances: list, pose: list, v: float = 0.2,
 # the weeks that keep their probes in a module of their own (grader/inside/probes_weekN.py)
 from grader.inside.probes_week5 import blend, switching  # noqa: E402
 from grader.inside.probes_week6 import follow_wall, wall_settings  # noqa: E402
+from grader.inside.probes_week7 import (  # noqa: E402
+    week7_progress,
+    week7_progress_point,
+    week7_sliding,
+    week7_step,
+)
 
 PROBES: dict[str, Callable[..., Any]] = {
     "uni_to_diff": uni_to_diff,
@@ -229,6 +239,10 @@ PROBES: dict[str, Callable[..., Any]] = {
     "switching": switching,
     "follow_wall": follow_wall,
     "wall_settings": wall_settings,
+    "week7_sliding": week7_sliding,
+    "week7_progress": week7_progress,
+    "week7_progress_point": week7_progress_point,
+    "week7_step": week7_step,
 }
 
 

@@ -56,7 +56,8 @@ def leaks(week: int, files: dict[str, str], course: Path) -> list[str]:
     for name, text in files.items():
         if name.endswith(".py"):
             for block in find_blocks(text, name):
-                spec = placeholder_for(name, block.scope, block.occurrence)
+                spec = (placeholder_for(name, block.scope, block.occurrence, week)
+                        or placeholder_for(name, block.scope, block.occurrence))
                 if spec is None or spec.week > week:
                     found.append(f"{name}: block {block.describe()} is not a block of weeks 1..{week}")
                 elif spec.week == week and block.body != spec.body(block.indent):
@@ -80,10 +81,12 @@ def _reference_lines(week: int, own: set[str], course: Path) -> set[str]:
         inside: set[int] = set()
         for block in find_blocks(solution, name):
             inside.update(range(block.start_line, block.end_line + 1))
-            spec = placeholder_for(name, block.scope, block.occurrence)
+            spec = placeholder_for(name, block.scope, block.occurrence, week)
             if spec is not None and spec.week == week:
                 reference.update(ln.strip() for ln in block.body.splitlines())
                 given.update(ln.strip() for ln in spec.body(block.indent).splitlines())
+            elif spec is not None:  # an earlier week's block: the handout ships it filled in
+                given.update(ln.strip() for ln in block.body.splitlines())
         given.update(ln.strip() for n, ln in enumerate(solution.splitlines(), 1) if n not in inside)
     return {ln for ln in reference - given if len(ln) >= _MIN_LEAK_CHARS and not ln.startswith("#")}
 

@@ -51,6 +51,7 @@ EXPOSED: tuple[str, ...] = (
     "grader/inside/probes.py",
     "grader/inside/probes_week5.py",
     "grader/inside/probes_week6.py",
+    "grader/inside/probes_week7.py",
     "grader/inside/protocol.py",
     "grader/inside/rlimits.py",
     "grader/inside/seccomp.py",

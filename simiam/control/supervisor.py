@@ -147,6 +147,10 @@ class Supervisor:
         self.event_values[name] = value
         return value
 
+    def is_in_state(self, name: str) -> bool:
+        """True when the current state is `name` (the original's is_in_state)."""
+        return self.current_state == name
+
     def at_goal(self) -> bool:
         """True when the *estimated* position is closer than d_stop to the goal."""
         x, y, _ = self.state_estimate.unpack()

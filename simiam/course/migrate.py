@@ -191,7 +191,7 @@ def _source_blocks(mig: Migration, name: str, cache: dict) -> dict[tuple[str, in
 def _carry(mig: Migration, name: str, text: str, blocks: list[Block], t: Block, cache: dict) -> str | None:
     """Decide the fate of this week's block `t`: record it in `mig`; return the body to write, if any."""
     week, label = mig.week, str(mig.target / name)
-    spec = placeholder_for(name, t.scope, t.occurrence)
+    spec = placeholder_for(name, t.scope, t.occurrence, week)
 
     def keep(why: str) -> None:
         """Record that the block stays as it is here (no body to write)."""

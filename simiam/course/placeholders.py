@@ -42,11 +42,20 @@ class Placeholder:
         return "".join(f"{indent}{ln}\n" if ln.strip() else "\n" for ln in lines)
 
 
-def placeholder_for(file: str, scope: str, occurrence: int = 1) -> Placeholder | None:
-    """The declared block of (file, scope, occurrence) in any week, or None."""
+def placeholder_for(file: str, scope: str, occurrence: int = 1,
+                    week: int | None = None) -> Placeholder | None:
+    """The declared block of (file, scope, occurrence), or None.
+
+    A later week may declare a new block where an earlier week had one (week 7's automaton fills the
+    place of week 5's switching in `QBSupervisor.execute`): in `week`, the block of the latest week up to
+    it is the one meant. Without a week: the first week's."""
     from simiam.course.weeks import all_blocks
 
-    for p in all_blocks():
+    found = None
+    for p in all_blocks():  # in week order
         if p.key == (file, scope, occurrence):
-            return p
-    return None
+            if week is None:
+                return p
+            if p.week <= week:
+                found = p
+    return found

@@ -116,4 +116,40 @@ SHIPPED: dict[int, dict[str, list[tuple]]] = {
             ("get_ir_distances", 1, 2, 19, "cdd2f0f97318d5ef"),
         ],
     },
+    7: {
+        "ao_and_gtg.py": [
+            ("AOandGTG.execute", 1, 5, 62, "dcba01d4c99cbc71"),
+        ],
+        "avoid_obstacles.py": [
+            ("AvoidObstacles.__init__", 1, 4, 32, "d45f0baf5f0076b4"),
+            ("AvoidObstacles.execute", 1, 4, 53, "ea6767b0a8405bc4"),
+            ("AvoidObstacles.apply_sensor_geometry", 1, 4, 83, "4aaeec608f416631"),
+            ("AvoidObstacles.get_transformation_matrix", 1, 4, 101, "aff0a4ea696a4f9b"),
+        ],
+        "differential_drive.py": [
+            ("uni_to_diff", 1, 2, 17, "4a3d747f72afaad3"),
+        ],
+        "follow_wall.py": [
+            ("FollowWall.execute", 1, 6, 69, "0eac67f03985a0d6"),
+        ],
+        "go_to_goal.py": [
+            ("GoToGoal.__init__", 1, 3, 24, "d45f0baf5f0076b4"),
+            ("GoToGoal.execute", 1, 3, 44, "6ea9f0cb1714bd70"),
+            ("GoToGoal.execute", 2, 3, 51, "67dabd64f946c78c"),
+            ("GoToGoal.execute", 3, 3, 57, "c319d9d978c7ce89"),
+        ],
+        "qb_supervisor.py": [
+            ("QBSupervisor.__init__", 1, 6, 76, "e6d94169536dcd4e"),
+            ("QBSupervisor.__init__", 2, 7, 82, "e76b103db16a22cc"),
+            ("QBSupervisor.execute", 1, 7, 102, "d26df17abf422ed4"),
+            ("QBSupervisor.set_progress_point", 1, 7, 153, "a716068e2dd7842c"),
+            ("QBSupervisor.progress_made", 1, 7, 162, "23c38ba35d64cdef"),
+            ("QBSupervisor.sliding_left", 1, 7, 174, "11529baf6866e5f4"),
+            ("QBSupervisor.sliding_right", 1, 7, 192, "11529baf6866e5f4"),
+            ("QBSupervisor.update_odometry", 1, 2, 278, "3a9e7d085bc8639e"),
+        ],
+        "quickbot.py": [
+            ("get_ir_distances", 1, 2, 19, "cdd2f0f97318d5ef"),
+        ],
+    },
 }

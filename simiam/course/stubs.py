@@ -48,7 +48,9 @@ def stub_text(week: int, solution_text: str, file: str, every_block: bool = Fals
     bodies: dict[int, str] = {}
     rows = []
     for b in blocks:
-        spec = placeholder_for(file, b.scope, b.occurrence)
+        # (a block of a later week only: the lookup without the week finds it, to say so below)
+        spec = placeholder_for(file, b.scope, b.occurrence, week) or placeholder_for(
+            file, b.scope, b.occurrence)
         if spec is None:
             raise BlockError(
                 file,

@@ -30,7 +30,7 @@ def fill(folder: Path, week: int, extra: str = MINE) -> None:
         bodies = {
             b.ordinal: indent_body(extra + dedent_body(sol_blocks[b.key].body), b.indent)
             for b in blocks
-            if placeholder_for(path.name, b.scope, b.occurrence).week == week
+            if placeholder_for(path.name, b.scope, b.occurrence, week).week == week
         }
         path.write_text(replace_bodies(text, blocks, bodies))
 

@@ -86,7 +86,7 @@ def test_new_blocks_are_placeholders_and_earlier_ones_are_filled(week):
         for s, b in zip(
             find_blocks(sol.read_text(), sol.name), find_blocks(stub.read_text(), sol.name), strict=True
         ):
-            spec = placeholder_for(sol.name, s.scope, s.occurrence)
+            spec = placeholder_for(sol.name, s.scope, s.occurrence, week)
             if spec.week == week:
                 new += 1
                 assert fingerprint(b.body) == fingerprint(spec.code), f"{sol.name} {s.describe()}"
@@ -120,7 +120,7 @@ def test_revised_blocks_are_the_ones_whose_shipped_code_changes():
     }
     for (w, name, key), body in bodies.items():
         before = bodies.get((w - 1, name, key))
-        spec = placeholder_for(name, *key)
+        spec = placeholder_for(name, *key, w)
         if before is None or spec.week == w:
             continue
         changed = fingerprint(before) != fingerprint(body)
@@ -260,7 +260,7 @@ def test_packaged_skeletons_are_the_stubs_with_every_block_a_placeholder():
             result = splice(skeleton, stubs[name], name)
             assert not result.errors and not result.outside_edits and result.text == stubs[name]
             for b in find_blocks(skeleton, name):
-                spec = placeholder_for(name, b.scope, b.occurrence)
+                spec = placeholder_for(name, b.scope, b.occurrence, week)
                 assert b.body == spec.body(b.indent), f"week{week}/{name} {b.describe()} is not a placeholder"
 
 

@@ -69,7 +69,7 @@ def test_result_records_version_hash_seed_and_isolation(tmp_path: Path) -> None:
     result = json.loads((tmp_path / "week1.json").read_text())
     assert result["seed"] == 9 and result["check_set_hash"] in result["grader_version"]
     assert result["isolation"] in ("bwrap", "subprocess")
-    assert grade_main(["week7"]) == 2
+    assert grade_main(["week99"]) == 2  # no such week
     assert grade_main(["week2", str(tmp_path / "missing")]) == 2
 
 

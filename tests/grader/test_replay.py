@@ -83,6 +83,15 @@ PROBE_CALLS = [  # one call of every probe, as the checks send them
     ("follow_wall", {"week": 6, "distances": [0.1, 0.15, 0.3, 0.3, 0.3], "pose": [0.0, 0.0, 0.0],
                      "direction": "left", "d_fw": 0.15, "v": 0.15}),
     ("wall_settings", {"week": 6}),
+    ("week7_sliding", {"week": 7, "direction": "left", "u_gtg": [0.0, 0.0], "u_ao": [0.3, -0.4],
+                       "u_fw": [0.8, 0.6]}),
+    ("week7_progress", {"week": 7, "goal": [1.1, 1.1], "estimate": [0.2, 0.3, 0.0], "d_prog": 1.0}),
+    ("week7_progress_point", {"week": 7, "goal": [1.1, 1.1], "estimate": [0.2, 0.3, 0.0], "d_prog": 10.0}),
+    ("week7_step", {"week": 7, "state": "go_to_goal", "fw_direction": "",
+                    "events": {"at_goal": False, "at_obstacle": True, "unsafe": False,
+                               "obstacle_cleared": False, "progress_made": False, "sliding_left": True,
+                               "sliding_right": False},
+                    "distances": [0.1, 0.12, 0.25, 0.3, 0.3]}),
 ]
 
 

@@ -1,0 +1,379 @@
+"""Week 7 checks: the sliding test (sigma), progress toward the goal, the automaton's transitions probed on
+synthetic events, and navigating out of the trap to the goal (the release goal, and hidden goals and start
+headings drawn per seed, each one the reference solution reaches).
+
+Two choices are accepted wherever the course allowed both (see assignments/week7/README.md):
+- progress_made: the manual's "closer than d_prog - epsilon" (epsilon = 0.1) or the course author's
+  "no farther than d_prog": a distance between d_prog - 0.1 and d_prog may count either way;
+- the automaton: the author's (progress first, the wall's side from the IR sums) or the manual's (the
+  side from the sliding tests): only transitions on which both agree are probed.
+A singular sliding system (u_gtg and u_ao parallel, or u_gtg = 0 at the goal) must not stop the run; at the
+goal (u_gtg = 0) the robot is not sliding. The navigation runs use the course's versions of the earlier
+weeks' parts (grader.earlier), with the student's week-7 blocks in them.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+from grader import earlier, scenarios
+from grader.checks import Check, Context, Mismatch, Outcome
+from grader.checks.answers import fmt, number, vector
+from grader.domains import Floats, Lists, SampledFrom
+from grader.properties import run_property
+from simiam.world import World, load_world
+
+SUPERVISOR = ("qb_supervisor.py",)
+ALL = ("differential_drive.py", "quickbot.py", "go_to_angle.py", "go_to_goal.py", "avoid_obstacles.py",
+       "ao_and_gtg.py", "follow_wall.py", "sliding_mode.py", "qb_supervisor.py")
+D_GOAL = 0.05  # the course's test 7.1: the TRUE position within 0.05 m of the goal
+EPSILON = 0.1  # the manual's slack in progress_made
+HIDDEN_SECONDS = 60.0
+NAVIGATE_HINT = (
+    "Hint: replay the run in the report and follow the state timeline: the robot must follow the wall when "
+    "it stops making progress at an obstacle, and leave it when it makes progress and no longer slides; "
+    "if the property checks of sigma, progress and the transitions pass, tune d_at_obs and d_unsafe"
+)
+
+_component = Floats(-2.0, 2.0)
+_vector = Lists(_component, min_size=2, max_size=2)
+_coord = Floats(-1.4, 1.4)
+
+
+# ------------------------------------------------------------------------------------------ sliding
+
+
+def _sigma(ctx: Context, direction: str, u_gtg, u_ao, u_fw) -> tuple[bool, list[float] | None]:
+    answer = ctx.probe("week7_sliding", direction=direction, u_gtg=list(u_gtg), u_ao=list(u_ao),
+                       u_fw=list(u_fw))
+    where = f"sliding_{direction} with u_gtg = {_v(u_gtg)}, u_ao = {_v(u_ao)}, u_fw = {_v(u_fw)}"
+    if not isinstance(answer, dict) or not isinstance(answer.get("sliding"), bool):
+        raise Mismatch(f"{where} did not return True or False")
+    sigma = answer.get("sigma")
+    if isinstance(sigma, list) and all(isinstance(c, list) and len(c) == 1 for c in sigma):
+        sigma = [c[0] for c in sigma]  # a 2x1 column is fine too
+    if isinstance(sigma, list) and len(sigma) == 2 and all(isinstance(c, str) for c in sigma):
+        return answer["sliding"], None  # nan or inf from a singular system
+    return answer["sliding"], vector(sigma, 2, f"{where} your sigma")
+
+
+def _v(u) -> str:
+    return f"({fmt(float(u[0]))}, {fmt(float(u[1]))})"
+
+
+def sigma_solves(ctx: Context) -> Outcome:
+    """[u_gtg u_ao] sigma = u_fw on well-conditioned systems, on both sides; sliding = both positive; and the
+    singular systems (u_gtg = 0, u_ao parallel to u_gtg) do not stop the run, and at the goal (u_gtg = 0)
+    the robot is not sliding."""
+
+    def case(ctx: Context, direction: str, u_gtg: list, u_ao: list, u_fw: list) -> None:
+        where = f"sliding_{direction} with u_gtg = {_v(u_gtg)}, u_ao = {_v(u_ao)}, u_fw = {_v(u_fw)}"
+        sliding, sigma = _sigma(ctx, direction, u_gtg, u_ao, u_fw)  # an exception fails the case too
+        if _det(u_gtg, u_ao) == 0.0:
+            if u_gtg == [0.0, 0.0] and sliding:
+                raise Mismatch(f"{where} (the estimate at the goal) returned True: with u_gtg = 0 no sigma "
+                               "has both entries positive, so the robot is not sliding")
+            return  # a singular system: any answer but an exception
+        if sigma is None:
+            raise Mismatch(f"{where}: your sigma was not two finite numbers")
+        got = (u_gtg[0] * sigma[0] + u_ao[0] * sigma[1], u_gtg[1] * sigma[0] + u_ao[1] * sigma[1])
+        scale = max(1.0, abs(u_fw[0]), abs(u_fw[1]))
+        if max(abs(got[0] - u_fw[0]), abs(got[1] - u_fw[1])) > 1e-6 * scale:
+            raise Mismatch(
+                f"{where}: your sigma ({fmt(sigma[0])}, {fmt(sigma[1])}) gives sigma_1 * u_gtg + sigma_2 * "
+                f"u_ao = {_v(got)}, not u_fw: solve [u_gtg u_ao] sigma = u_fw with u_gtg and u_ao as the "
+                "COLUMNS of the matrix (np.column_stack, or np.linalg.solve(A, u_fw) with A = [[u_gtg_x, "
+                "u_ao_x], [u_gtg_y, u_ao_y]])"
+            )
+        want = sigma[0] > 0 and sigma[1] > 0
+        if sliding != want:
+            raise Mismatch(f"{where}: sigma = ({fmt(sigma[0])}, {fmt(sigma[1])}), so sliding is {want}, "
+                           f"but the event returned {sliding}")
+
+    def good(values: dict) -> bool:
+        """Exactly singular (the examples), or far from it (a drawn system close to singular is skipped)."""
+        g, a = values["u_gtg"], values["u_ao"]
+        det = _det(g, a)
+        return det == 0.0 or abs(det) > 0.05 * math.hypot(*g) * math.hypot(*a)
+
+    examples = [
+        {"direction": "left", "u_gtg": [1.0, 1.0], "u_ao": [-0.5, 0.3], "u_fw": [0.4, 1.2]},
+        {"direction": "right", "u_gtg": [1.0, 1.0], "u_ao": [0.3, -0.5], "u_fw": [1.2, 0.4]},
+        {"direction": "left", "u_gtg": [0.2, -1.0], "u_ao": [0.7, 0.1], "u_fw": [-0.3, 0.9]},
+        # singular: at the goal, and u_ao parallel to u_gtg (both ways)
+        {"direction": "left", "u_gtg": [0.0, 0.0], "u_ao": [0.3, -0.4], "u_fw": [0.8, 0.6]},
+        {"direction": "right", "u_gtg": [0.0, 0.0], "u_ao": [0.3, -0.4], "u_fw": [0.8, 0.6]},
+        {"direction": "left", "u_gtg": [0.5, 0.25], "u_ao": [1.0, 0.5], "u_fw": [0.75, 0.5]},
+        {"direction": "right", "u_gtg": [0.5, 0.25], "u_ao": [-0.25, -0.125], "u_fw": [0.75, 0.5]},
+    ]
+    return run_property(
+        ctx,
+        "week7.sliding.sigma",
+        {"direction": SampledFrom(["left", "right"]), "u_gtg": _vector, "u_ao": _vector, "u_fw": _vector},
+        _guarded(case, good),
+        examples=examples,
+        max_examples=15,
+        passed="sigma solves [u_gtg u_ao] sigma = u_fw, sliding is sigma_1 > 0 and sigma_2 > 0, and the "
+               "singular systems (u_gtg = 0, u_ao parallel to u_gtg) do not stop the run",
+    )
+
+
+def _det(u_gtg: list, u_ao: list) -> float:
+    return u_gtg[0] * u_ao[1] - u_ao[0] * u_gtg[1]
+
+
+def _guarded(case, keep):
+    """`case` run only on inputs `keep` accepts (the others pass: a drawn system too close to singular)."""
+
+    def run(ctx: Context, **values) -> None:
+        if keep(values):
+            case(ctx, **values)
+
+    return run
+
+
+# ----------------------------------------------------------------------------------------- progress
+
+
+def _distance_case(values: dict) -> tuple[list, list, float, float]:
+    goal = [values["x_g"], values["y_g"]]
+    angle = values["bearing"]
+    distance = values["distance"]
+    estimate = [goal[0] + distance * math.cos(angle), goal[1] + distance * math.sin(angle), 0.0]
+    return goal, estimate, distance, values["d_prog"]
+
+
+_PROGRESS = {"x_g": _coord, "y_g": _coord, "bearing": Floats(-math.pi, math.pi),
+             "distance": Floats(0.0, 2.0), "d_prog": Floats(0.05, 2.5)}
+
+
+def progress_made(ctx: Context) -> Outcome:
+    def case(ctx: Context, **values) -> None:
+        goal, estimate, distance, d_prog = _distance_case(values)
+        answer = ctx.probe("week7_progress", goal=goal, estimate=estimate, d_prog=d_prog)
+        where = (f"with the goal {_v(goal)}, the estimate {fmt(distance)} m from it and d_prog = "
+                 f"{fmt(d_prog)} m")
+        made = answer.get("progress") if isinstance(answer, dict) else None
+        if not isinstance(made, bool):
+            raise Mismatch(f"{where} progress_made did not return True or False")
+        if distance < d_prog - EPSILON - 1e-9 and not made:
+            raise Mismatch(f"{where} progress_made returned False: the robot is closer to the goal than "
+                           "it has ever been (closer than d_prog - 0.1 even)")
+        if distance > d_prog + 1e-9 and made:
+            raise Mismatch(f"{where} progress_made returned True: the robot is farther from the goal than "
+                           "d_prog, the closest it has been")
+        if isinstance(answer.get("d_prog"), float) and answer["d_prog"] != d_prog:
+            raise Mismatch(f"{where} progress_made changed d_prog to {fmt(answer['d_prog'])}: only "
+                           "set_progress_point sets it")
+
+    examples = [
+        {"x_g": 1.1, "y_g": 1.1, "bearing": 3.9, "distance": 0.5, "d_prog": 1.0},
+        {"x_g": 1.1, "y_g": 1.1, "bearing": 3.9, "distance": 1.2, "d_prog": 1.0},
+        {"x_g": -1.0, "y_g": 1.0, "bearing": 0.0, "distance": 0.0, "d_prog": 0.5},
+    ]
+    return run_property(ctx, "week7.progress.made", _PROGRESS, case, examples=examples, max_examples=15,
+                        passed="progress_made compares the distance to the goal with d_prog")
+
+
+def progress_point(ctx: Context) -> Outcome:
+    def case(ctx: Context, **values) -> None:
+        goal, estimate, distance, d_prog = _distance_case(values)
+        answer = ctx.probe("week7_progress_point", goal=goal, estimate=estimate, d_prog=d_prog)
+        where = (f"with the goal {_v(goal)}, the estimate {fmt(distance)} m from it and d_prog = "
+                 f"{fmt(d_prog)} m,")
+        got = number(answer.get("d_prog") if isinstance(answer, dict) else None,
+                     f"{where} d_prog after set_progress_point")
+        want = min(distance, d_prog)
+        if abs(got - want) > 1e-9 * max(1.0, want):
+            what = "the distance to the goal" if distance < d_prog else "d_prog unchanged (it was closer)"
+            raise Mismatch(f"{where} set_progress_point left d_prog = {fmt(got)}, expected {fmt(want)}: "
+                           f"{what}; d_prog is the smallest distance to the goal so far")
+
+    examples = [
+        {"x_g": 1.1, "y_g": 1.1, "bearing": 3.9, "distance": 0.5, "d_prog": 10.0},
+        {"x_g": 1.1, "y_g": 1.1, "bearing": 0.3, "distance": 1.2, "d_prog": 1.0},
+    ]
+    return run_property(ctx, "week7.progress.point", _PROGRESS, case, examples=examples, max_examples=15,
+                        passed="set_progress_point keeps the smallest distance to the goal")
+
+
+# ---------------------------------------------------------------------------------------- automaton
+
+# The situations probed: the state the robot is in, its fw_direction, the events that decide, and what
+# every correct automaton does (the author's and the manual's alike). Events not named are drawn.
+_NEAR_LEFT = [0.1, 0.12, 0.25, 0.3, 0.3]   # an obstacle on the left (sensors 1-2), nothing on the right
+_NEAR_RIGHT = list(reversed(_NEAR_LEFT))
+SITUATIONS = {
+    "at_goal": ("go_to_goal", "", {"at_goal": True}, "stop",
+                "at the goal (at_goal) the robot must stop"),
+    "at_goal_on_wall": ("follow_wall", "left", {"at_goal": True}, "stop",
+                        "at the goal (at_goal) the robot must stop, even while following a wall"),
+    "unsafe": ("go_to_goal", "", {"at_goal": False, "unsafe": True}, "avoid_obstacles",
+               "too close to an obstacle (unsafe) the robot must avoid it (avoid_obstacles)"),
+    "unsafe_on_wall": ("follow_wall", "right", {"at_goal": False, "unsafe": True}, "avoid_obstacles",
+                       "too close to an obstacle (unsafe) the robot must avoid it, even on a wall"),
+    "free_progress": ("go_to_goal", "", {"at_goal": False, "unsafe": False, "at_obstacle": False,
+                                         "progress_made": True, "obstacle_cleared": True},
+                      "go_to_goal",
+                      "with no obstacle near and progress made the robot keeps going to the goal"),
+    "stuck_left": ("go_to_goal", "", {"at_goal": False, "unsafe": False, "at_obstacle": True,
+                                      "obstacle_cleared": False, "progress_made": False,
+                                      "sliding_left": True, "sliding_right": False},
+                   "follow_wall/left", "at an obstacle on its left with no progress (and sliding_left) the "
+                   "robot must follow the wall on the left"),
+    "stuck_right": ("go_to_goal", "", {"at_goal": False, "unsafe": False, "at_obstacle": True,
+                                       "obstacle_cleared": False, "progress_made": False,
+                                       "sliding_left": False, "sliding_right": True},
+                    "follow_wall/right", "at an obstacle on its right with no progress (and sliding_right) "
+                    "the robot must follow the wall on the right"),
+    "leave_left": ("follow_wall", "left", {"at_goal": False, "unsafe": False, "progress_made": True,
+                                           "sliding_left": False, "sliding_right": True},
+                   "go_to_goal", "following a wall on the left, with progress made and no longer sliding "
+                   "left (sliding_left False; sliding_right does not matter), the robot must go to the goal"),
+    "leave_right": ("follow_wall", "right", {"at_goal": False, "unsafe": False, "progress_made": True,
+                                             "sliding_left": True, "sliding_right": False},
+                    "go_to_goal", "following a wall on the right, with progress made and no longer sliding "
+                    "right (sliding_right False), the robot must go to the goal"),
+    "keep_sliding": ("follow_wall", "left", {"at_goal": False, "unsafe": False, "progress_made": True,
+                                             "sliding_left": True, "sliding_right": False},
+                     "follow_wall/left", "following a wall on the left and still sliding left "
+                     "(sliding_left True) the robot must keep following it"),
+    "no_progress_on_wall": ("follow_wall", "right", {"at_goal": False, "unsafe": False,
+                                                     "progress_made": False},
+                            "follow_wall/right", "following a wall with no progress made the robot must "
+                            "keep following it"),
+    "safe_again": ("avoid_obstacles", "", {"at_goal": False, "unsafe": False}, "not avoid_obstacles",
+                   "once no longer unsafe the robot must leave avoid_obstacles"),
+}
+_EVENTS = ("at_goal", "at_obstacle", "unsafe", "obstacle_cleared", "progress_made", "sliding_left",
+           "sliding_right")
+
+
+def _step(ctx: Context, situation: str, drawn: list[bool]) -> tuple[dict, dict]:
+    state, direction, fixed, _, _ = SITUATIONS[situation]
+    events = {name: fixed.get(name, drawn[i]) for i, name in enumerate(_EVENTS)}
+    distances = _NEAR_RIGHT if "right" in situation else _NEAR_LEFT
+    answer = ctx.probe("week7_step", state=state, fw_direction=direction, events=events, distances=distances)
+    if not isinstance(answer, dict):
+        raise Mismatch("QBSupervisor.execute gave no answer")
+    return events, answer
+
+
+def transitions(ctx: Context) -> Outcome:
+    def case(ctx: Context, situation: str, drawn: list) -> None:
+        events, answer = _step(ctx, situation, drawn)
+        state, direction, _, expected, words = SITUATIONS[situation]
+        on = ", ".join(f"{k}={'True' if v else 'False'}" for k, v in events.items())
+        distances = ", ".join(fmt(d) for d in (_NEAR_RIGHT if "right" in situation else _NEAR_LEFT))
+        where = (f"in state {state}" + (f" (fw_direction {direction!r})" if direction else "")
+                 + f" with {on} and the IR distances ({distances})")
+        got = answer.get("state")
+        shown = got if isinstance(got, str) else "no state"
+        if expected == "not avoid_obstacles":
+            if got == "avoid_obstacles":
+                raise Mismatch(f"{where} your automaton stayed in avoid_obstacles: {words}")
+            return
+        want_state, _, want_side = expected.partition("/")
+        if got != want_state:
+            raise Mismatch(f"{where} your automaton switched to {shown}, expected {want_state}: {words}")
+        if want_side:
+            side, ran = answer.get("fw_direction"), answer.get("follow_wall_direction")
+            if side != want_side:
+                raise Mismatch(f"{where} your automaton set fw_direction to {side!r}, expected "
+                               f"{want_side!r}: {words}")
+            if ran != want_side:
+                raise Mismatch(f"{where} FollowWall ran with inputs.direction = {ran!r}, not your "
+                               f"fw_direction {side!r}: set self.fw_direction (the supervisor passes it "
+                               "on after your block)")
+
+    examples = [{"situation": name, "drawn": [False] * len(_EVENTS)} for name in SITUATIONS]
+    return run_property(
+        ctx,
+        "week7.fsm.transitions",
+        {"situation": SampledFrom(sorted(SITUATIONS)),
+         "drawn": Lists(SampledFrom([False, True]), min_size=len(_EVENTS), max_size=len(_EVENTS))},
+        case,
+        examples=examples,
+        max_examples=20,
+        passed="every probed transition is right (stop, avoid, follow the wall on the right side, leave it)",
+    )
+
+
+# ---------------------------------------------------------------------------------------- scenarios
+
+
+def turned(world: World, goal: tuple[float, float], turn: int, of: int) -> tuple[World, tuple[float, float]]:
+    """The world and the goal rotated about the start by 2*pi*turn/of: the robot starts facing another way
+    (its estimate still starts at (0, 0, 0), as the student's supervisor expects)."""
+    theta = 2 * math.pi * turn / of
+    c, s = math.cos(theta), math.sin(theta)
+    moved = [[(c * x - s * y, s * x + c * y) for x, y in poly] for poly in world.obstacles]
+    label = f"trap world turned {360 * turn / of:g} degrees"
+    return World(label, moved), (c * goal[0] - s * goal[1], s * goal[0] + c * goal[1])
+
+
+def navigate(ctx: Context, check_id: str, world: World, goal: tuple[float, float], label: str,
+             seconds: float) -> tuple[bool, str, dict, scenarios.Run]:
+    """One run to `goal`: reached when the TRUE position comes within 0.05 m of it, with no collision."""
+    settings = ctx.config.settings.with_changes(goal=tuple(goal)).as_dict()
+    session, note = earlier.scenario_session(ctx)  # earlier weeks' parts: the course's versions
+    r = scenarios.run(ctx, label, settings, seconds, world=world, goal=goal, goal_radius=D_GOAL,
+                      session=session)
+    scenarios.keep(ctx, check_id, r)
+    details = {**r.metrics, "problem": r.problem, "traces": scenarios.trace_keys([r])}
+    where = f"goal ({goal[0]:.2f}, {goal[1]:.2f})" + (f" ({note})" if note else "")
+    if r.problem:
+        return False, f"{where}: {r.problem}", details, r
+    if r.collision is not None:
+        return False, f"{where}: collided at t = {r.collision['t']:.2f} s", details, r
+    if not r.reached:
+        return (False, f"{where}: not reached in {seconds:g} s ({r.metrics['final_distance']:.2f} m away at "
+                       "the end)", details, r)
+    return True, f"{where} reached in {r.t_goal:.1f} s without a collision", details, r
+
+
+def release_goal(ctx: Context) -> Outcome:
+    goal = ctx.config.settings.goal or (1.1, 1.1)
+    ok, text, details, r = navigate(ctx, "week7.navigate.release_goal", load_world(ctx.config.world), goal,
+                                    "the trap world", ctx.config.seconds)
+    hint = "" if ok or r.problem else f". {NAVIGATE_HINT}"
+    return Outcome(float(ok), f"from inside the trap: {text}{hint}", details, status=scenarios.status_of([r]))
+
+
+def other_goals(ctx: Context) -> Outcome:
+    from grader.hidden import load_hidden
+
+    data = load_hidden(7)
+    if not data:
+        return Outcome(0.0, "the instructor's hidden set is not here (it runs at official grading)",
+                       status="error")
+    picks = random.Random(f"{ctx.seed}:week7-variants").sample(data["variants"], 3)
+    good, lines, runs, done = 0, [], [], []
+    for v in picks:
+        world, goal = turned(load_world(ctx.config.world), tuple(v["goal"]), v["turn"], v["of"])
+        ok, text, details, r = navigate(ctx, "week7.navigate.other_goals", world, goal, world.name,
+                                        HIDDEN_SECONDS)
+        good += ok
+        lines.append(f"{world.name}, {text}")
+        runs.append({"variant": v, **details})
+        done.append(r)
+    missed = good < 3 and not any(r.problem for r in done)
+    return Outcome(good / 3, "; ".join(lines) + (f". {NAVIGATE_HINT}" if missed else ""),
+                   {"runs": runs, "traces": scenarios.trace_keys(done)}, status=scenarios.status_of(done))
+
+
+CHECKS = [
+    Check("week7.sliding.sigma", "sigma solves [u_gtg u_ao] sigma = u_fw, also when singular", "property",
+          1.0, sigma_solves, SUPERVISOR),
+    Check("week7.progress.made", "progress_made compares the distance to the goal with d_prog", "property",
+          1.0, progress_made, SUPERVISOR),
+    Check("week7.progress.point", "set_progress_point keeps the closest distance to the goal", "property",
+          0.5, progress_point, SUPERVISOR),
+    Check("week7.fsm.transitions", "the automaton's transitions on synthetic events", "property", 2.0,
+          transitions, ALL),
+    Check("week7.navigate.release_goal", "out of the trap to the goal (1.1, 1.1) in 60 s, no collision",
+          "scenario", 2.0, release_goal, ALL, plots=("trajectory", "states", "signals:d_prog,switches")),
+    Check("week7.navigate.other_goals", "other goals and start headings drawn per seed", "scenario", 1.5,
+          other_goals, ALL, visibility="hidden", plots=("trajectory", "states")),
+]

@@ -1,0 +1,60 @@
+"""The instructor's hidden week-7 variants are fair and discriminating: the reference solution reaches every
+goal (the TRUE position within 0.05 m, no collision, within the check's 60 s) and the untouched stub, which
+only goes straight for the goal, reaches none."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from grader.checks.week7 import D_GOAL, HIDDEN_SECONDS, turned
+from grader.hidden import load_hidden
+from simiam.control.local_brain import LocalBrain
+from simiam.course.loader import load_submission
+from simiam.course.weeks import get_week
+from simiam.simulator import Simulator
+from simiam.world import load_world
+
+ROOT = Path(__file__).resolve().parents[2]
+WEEK = get_week(7)
+
+
+def outcome(folder: Path, variant: dict) -> tuple:
+    """("reached", t), ("collided", t) or ("not reached",), as the check judges one run."""
+    world, goal = turned(load_world(WEEK.world), tuple(variant["goal"]), variant["turn"], variant["of"])
+    sub = load_submission(folder, WEEK)
+    assert sub.ok, sub.errors
+    brain = LocalBrain(sub, WEEK, WEEK.settings.with_changes(goal=goal).as_dict())
+    sim = Simulator(world, brain, WEEK.spec, dt=WEEK.dt)
+    for _ in range(int(round(HIDDEN_SECONDS / WEEK.dt))):
+        rec = sim.step()
+        if rec.collided:
+            return ("collided", rec.t)
+        if math.dist(rec.pose[:2], goal) < D_GOAL:
+            return ("reached", rec.t)
+    return ("not reached",)
+
+
+def test_hidden_set_is_present_and_big_enough() -> None:
+    data = load_hidden(7)
+    assert data is not None and len(data["variants"]) >= 20
+    assert {v["turn"] for v in data["variants"]} == {0, 1, 2, 3}
+
+
+@pytest.mark.slow
+def test_reference_solution_reaches_every_hidden_goal() -> None:
+    missed = []
+    for v in load_hidden(7)["variants"]:
+        got = outcome(ROOT / "solutions" / "week7", v)
+        if got[0] != "reached" or abs(got[1] - v["reference_seconds"]) > 1e-6:
+            missed.append((v, got))
+    assert missed == []
+
+
+@pytest.mark.slow
+def test_the_stub_reaches_no_hidden_goal() -> None:
+    stub = ROOT / "assignments" / "week7"
+    reached = [v for v in load_hidden(7)["variants"] if outcome(stub, v)[0] == "reached"]
+    assert reached == []
