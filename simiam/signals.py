@@ -89,6 +89,9 @@ SIGNALS: dict[str, Signal] = {s.name: s for s in (
     _c("u_fw_pp", "vector2", doc="follow-wall: u_fw_p minus d_fw along it"),
     _c("u_fw", "vector2", doc="follow-wall: the vector followed"),
     _s("sigma", "vector2", doc="sliding mode: [u_gtg u_ao] sigma = u_fw"),
+    # week 7 keeps one sigma per side: the last one its sliding_left / sliding_right computed
+    _s("sigma_left", "vector2", doc="sliding mode, wall on the left: the last sigma sliding_left solved"),
+    _s("sigma_right", "vector2", doc="sliding mode, wall on the right: the last sigma sliding_right solved"),
     _s("fw_direction", "label", doc="follow-wall direction, 'left' or 'right'"),
     _s("d_prog", "scalar", doc="progress point: the closest the estimate has been to the goal", unit="m"),
     _s("switches", "count", "switch_count", doc="how many times the supervisor switched state"),

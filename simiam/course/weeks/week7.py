@@ -97,6 +97,6 @@ WEEK = Week(
     # the automaton's trace: the state (always recorded), each event as checked in the step, the switches
     debug_signals=("v", "w", "theta_g", "u_ao", "u_gtg", "u_fw_t", "u_fw_p", "ir_points_wf", "fw_direction",
                    "d_prog", "switches", "at_goal", "at_obstacle", "unsafe", "obstacle_cleared",
-                   "progress_made", "sliding_left", "sliding_right"),
+                   "progress_made", "sliding_left", "sliding_right", "sigma_left", "sigma_right"),
     summary=("goal",),
 )
