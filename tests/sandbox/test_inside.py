@@ -100,10 +100,14 @@ def test_every_module_of_grader_inside_is_exposed_and_the_worker_starts_there() 
     ("probes_name_the_checks.py", "grader.checks.week3"),       # importlib.import_module("grader.checks...")
     ("probes_reach_the_physics.py", "simiam.robot.dynamics"),   # relative import of the physics
 ])
-def test_the_walk_sees_a_trusted_import(planted: str, forbidden: str) -> None:
-    """The wrong versions (tests/data/inside_wrong/): probes that import trusted code in three ways."""
+def test_the_walk_sees_a_trusted_import(planted: str, forbidden: str, tmp_path: Path) -> None:
+    """The wrong versions (tests/data/inside_wrong/): today's probes with a function planted at the end
+    that imports trusted code, in three ways."""
+    wrong = tmp_path / "probes.py"
+    wrong.write_text((REPO / "grader/inside/probes.py").read_text() + "\n\n" + (WRONG / planted).read_text())
+
     def source(module: str) -> Path | None:
-        return WRONG / planted if module == "grader.inside.probes" else _file_of(module)
+        return wrong if module == "grader.inside.probes" else _file_of(module)
 
     bad = reached(source)
     assert forbidden in bad.get("grader.inside.probes", []), bad
