@@ -18,6 +18,7 @@ import math
 import random
 
 from grader import earlier, scenarios
+from grader import reference as ref
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import fmt, number, vector
 from grader.domains import Floats, Lists, SampledFrom
@@ -306,11 +307,10 @@ def transitions(ctx: Context) -> Outcome:
 def turned(world: World, goal: tuple[float, float], turn: int, of: int) -> tuple[World, tuple[float, float]]:
     """The world and the goal rotated about the start by 2*pi*turn/of: the robot starts facing another way
     (its estimate still starts at (0, 0, 0), as the student's supervisor expects)."""
-    theta = 2 * math.pi * turn / of
-    c, s = math.cos(theta), math.sin(theta)
-    moved = [[(c * x - s * y, s * x + c * y) for x, y in poly] for poly in world.obstacles]
+    about_start = (0.0, 0.0, 2 * math.pi * turn / of)
+    moved = [ref.placed(about_start, [(x, y) for x, y in poly]) for poly in world.obstacles]
     label = f"trap world turned {360 * turn / of:g} degrees"
-    return World(label, moved), (c * goal[0] - s * goal[1], s * goal[0] + c * goal[1])
+    return World(label, moved), ref.place(about_start, goal)
 
 
 def navigate(ctx: Context, check_id: str, world: World, goal: tuple[float, float], label: str,
