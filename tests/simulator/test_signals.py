@@ -223,3 +223,22 @@ def test_events_are_recorded_as_check_event_gave_them_in_this_step():
     brain.step({"t": 0.033, "dt": 0.033, "ticks": [0, 0], "ir_raw": [200] * 5})
     assert read_signals(brain.supervisor, declared(("at_goal", "unsafe")), 5) == {"at_goal": True,
                                                                                  "unsafe": None}
+
+
+def test_week7_records_the_sigma_its_sliding_tests_solved() -> None:
+    """The week-7 solution's run carries sigma_left (what sliding_left solved) in its trace, beside the
+    sliding events: the replay and the report can show why the automaton stayed at a wall."""
+    from simiam.control.local_brain import LocalBrain
+    from simiam.course.loader import load_submission
+    from simiam.course.weeks import get_week
+    from simiam.signals import week_signals
+
+    week = get_week(7)
+    submission = load_submission(Path(__file__).resolve().parents[2] / "solutions/week7", week)
+    brain = LocalBrain(submission, week, week.settings.as_dict())
+    sim = Simulator(load_world(week.world), brain, spec=week.spec, dt=week.dt, signals=week_signals(week))
+    steps = sim.run(seconds=30.0).steps  # the robot reaches the wall, and follows it, after ~10 s
+    sigmas = [s for s in steps["sigma_left"] if s is not None]
+    checked = [k for k, flag in enumerate(steps["sliding_left"]) if flag is not None]
+    assert sigmas and all(len(s) == 2 for s in sigmas)
+    assert checked and steps["sigma_left"][checked[0]] is not None
