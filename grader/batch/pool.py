@@ -23,21 +23,21 @@ itself; it must be a module-level function.
 
 from __future__ import annotations
 
-import importlib
 import json
 import os
-import signal
 import subprocess
 import sys
 import tempfile
 import time
-import traceback
-from collections.abc import Callable, Iterable
+from collections import deque
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass
 from multiprocessing.connection import Connection, wait
 from pathlib import Path
 from typing import Any
 
-from grader.batch.proctree import die_with_parent, exit_reason, kill_tree
+from grader.batch.grading_process import NO_TASK
+from grader.batch.proctree import exit_reason, kill_tree
 from grader.sandbox.leftovers import sweep_scratch
 
 SCRATCH_PREFIX = "simiam-slot-"
@@ -55,44 +55,21 @@ def function_ref(fn: GradeFn | str) -> str:
     return ref
 
 
-def resolve(ref: str) -> GradeFn:
-    """Import the function named by :func:`function_ref`."""
-    module, _, name = ref.partition(":")
-    obj: Any = importlib.import_module(module)
-    for part in name.split("."):
-        obj = getattr(obj, part)
-    return obj
+@dataclass
+class _InFlight:
+    """A task a grading process holds: sent at ``sent``, due by ``deadline``. ``alone`` marks a task run
+    again after a failure it shared with another task: no second task may join it, so this time a crash
+    or a timeout is certainly its own."""
 
-
-def call_to_reply(fn: GradeFn, task: dict) -> bytes:
-    """Run ``fn(task)`` and encode the reply; an exception becomes an error reply, never a raise."""
-    try:
-        return json.dumps({"ok": True, "value": fn(task)}, allow_nan=False).encode()
-    except BaseException as exc:  # noqa: BLE001 - SystemExit from deep inside must not kill the loop silently
-        return json.dumps({"ok": False, "message": f"{type(exc).__name__}: {exc}",
-                           "traceback": traceback.format_exc(limit=20)}).encode()
-
-
-def _child_main(ref: str, task_fd: int, reply_fd: int) -> None:
-    """Child process: answer tasks until the task pipe closes.
-
-    It runs in its own session (``start_new_session``), so a terminal Ctrl-C reaches only the runner,
-    which then stops the children in order.
-    """
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    die_with_parent()
-    tasks, replies = Connection(task_fd, writable=False), Connection(reply_fd, readable=False)
-    fn = resolve(ref)
-    while True:
-        try:
-            raw = tasks.recv_bytes()
-        except (EOFError, OSError):
-            return
-        replies.send_bytes(call_to_reply(fn, json.loads(raw)))
+    task: dict
+    sent: float
+    deadline: float
+    alone: bool = False
 
 
 class _Slot:
-    """One grading process (a plain ``python -m grader.batch.pool`` child) and the task it works on.
+    """One grading process (a plain ``python -m grader.batch.grading_process`` child) and the tasks it holds:
+    usually one; two while it writes one submission's report and has begun the next.
 
     A subprocess rather than ``multiprocessing.Process``: Dask workers are daemonic processes, which
     multiprocessing forbids to have children, and a fresh interpreter never re-imports the caller's
@@ -106,9 +83,7 @@ class _Slot:
         self.conn: Connection | None = None       # replies; EOF here also means the child died
         self.log: Any = None
         self.scratch: Path | None = None
-        self.task: dict | None = None
-        self.started = 0.0
-        self.deadline = 0.0
+        self.flight: list[_InFlight] = []         # oldest first: replies come in this order
         self.done = 0
 
     def ensure_running(self) -> None:
@@ -124,7 +99,7 @@ class _Slot:
         # its prints and warnings go to a private log (shown when it crashes), not over the progress line
         self.log = tempfile.TemporaryFile()
         self.proc = subprocess.Popen(
-            [sys.executable, "-m", "grader.batch.pool", self.ref, str(task_r), str(reply_w)],
+            [sys.executable, "-m", "grader.batch.grading_process", self.ref, str(task_r), str(reply_w)],
             pass_fds=(task_r, reply_w), start_new_session=True, env=env, stdin=subprocess.DEVNULL,
             stdout=self.log, stderr=subprocess.STDOUT)
         os.close(task_r)
@@ -133,30 +108,43 @@ class _Slot:
         self.conn = Connection(reply_r, writable=False)
         self.done = 0
 
-    def send(self, task: dict, budget_s: float) -> None:
+    def send(self, task: dict, budget_s: float, alone: bool = False) -> None:
         self.ensure_running()
-        assert self.send_conn is not None
-        self.task, self.started = task, time.monotonic()
-        self.deadline = self.started + budget_s
+        now = time.monotonic()
+        self.flight.append(_InFlight(task, now, now + budget_s, alone))
+        self._write(json.dumps(task).encode())
+
+    def decline(self) -> None:
+        """Answer the process's request for a next task: none for now."""
+        self._write(NO_TASK)
+
+    def _write(self, data: bytes) -> None:
         try:
-            self.send_conn.send_bytes(json.dumps(task).encode())
-        except OSError:   # died between the liveness check and the send: the reply pipe reports it
+            assert self.send_conn is not None
+            self.send_conn.send_bytes(data)
+        except OSError:   # died since the liveness check: the reply pipe reports it
             pass
 
     def take(self) -> tuple[dict, float]:
-        task, seconds = self.task, time.monotonic() - self.started
-        self.task = None
+        """The oldest task (its reply has arrived) and the seconds since it was sent."""
+        entry = self.flight.pop(0)
         self.done += 1
-        assert task is not None
-        return task, seconds
+        return entry.task, time.monotonic() - entry.sent
+
+    def stop(self, kill: bool = False) -> None:
+        """Kill the process tree, or close its task pipe (EOF: it leaves its loop and exits); no waiting,
+        so several processes can end at once."""
+        if self.proc is None:
+            return
+        if kill:
+            kill_tree(self.proc.pid)
+        elif self.send_conn is not None:
+            self.send_conn.close()
+            self.send_conn = None
 
     def close(self, kill: bool = False) -> None:
         if self.proc is not None:
-            if kill:
-                kill_tree(self.proc.pid)
-            elif self.send_conn is not None:
-                self.send_conn.close()      # EOF: the child leaves its loop and exits
-                self.send_conn = None
+            self.stop(kill)
             try:
                 self.proc.wait(timeout=10)
             except subprocess.TimeoutExpired:
@@ -186,62 +174,97 @@ class WorkerPool:
 
     ``on_done(task, outcome)`` is called in the caller's thread as each task ends, where ``outcome`` is
     ``{"status": "ok" | "timeout" | "crashed", "value": dict | None, "message": str, "seconds": float}``.
-    ``tasks`` may be a lazy iterator: it is pulled only when a slot is free.
+    ``tasks`` may be a lazy iterator: it is pulled only when a grading process is free or asks for its
+    next task (a function split with grader.batch.grading_process.overlapped asks as it starts its
+    report), and a free process gets its next task before ``on_done`` stores the last one's result.
+
+    A process that dies or overruns while holding two tasks (one's report, the next one's start) does
+    not say which one did it: neither is blamed, and each is graded again in a fresh process, alone.
     """
 
     def __init__(self, grade_fn: GradeFn | str, jobs: int, budget_s: float, recycle_after: int = 200,
                  ) -> None:
         self.ref = function_ref(grade_fn)
         self.jobs, self.budget_s, self.recycle_after = max(1, jobs), budget_s, recycle_after
+        self._pending: Iterator[dict] = iter(())
+        self._exhausted = False
+        self._again: deque[dict] = deque()      # tasks to grade again, alone
 
     def run(self, tasks: Iterable[dict], on_done: Callable[[dict, dict], None]) -> None:
         sweep_orphans()
         slots = [_Slot(self.ref) for _ in range(self.jobs)]
-        pending = iter(tasks)
-        exhausted = False
+        self._pending, self._exhausted, self._again = iter(tasks), False, deque()
         try:
             while True:
                 for slot in slots:
-                    if slot.task is None and not exhausted:
-                        task = next(pending, None)
-                        if task is None:
-                            exhausted = True
-                        else:
-                            slot.send(task, self.budget_s)
-                busy = [s for s in slots if s.task is not None]
+                    if not slot.flight:
+                        self._fill(slot)
+                busy = [s for s in slots if s.flight]
                 if not busy:
-                    if exhausted:
+                    if self._exhausted and not self._again:
                         return
                     continue
                 # wake for a reply, a death (EOF on the reply pipe), the nearest deadline, or at least
                 # once a second to notice a child that died while a grandchild still holds its pipe
-                timeout = max(0.0, min(min(s.deadline for s in busy) - time.monotonic(), 1.0))
+                timeout = max(0.0, min(min(s.flight[0].deadline for s in busy) - time.monotonic(), 1.0))
                 wait([s.conn for s in busy if s.conn is not None], timeout=timeout)
+                ended: list[tuple[dict, dict]] = []
                 for slot in busy:
-                    outcome = self._poll(slot)
-                    if outcome is not None:
-                        task, outcome["seconds"] = slot.take()
-                        if slot.done >= self.recycle_after:
-                            slot.close()
-                        on_done(task, outcome)
+                    ended.extend(self._poll(slot))
+                for slot in slots:              # a free process starts its next task first...
+                    if not slot.flight:
+                        self._fill(slot)
+                for task, outcome in ended:     # ...then the results are stored (files, fsync)
+                    on_done(task, outcome)
         finally:
             for slot in slots:
-                slot.close(kill=slot.task is not None)
+                slot.stop(kill=bool(slot.flight))
+            for slot in slots:
+                slot.close(kill=bool(slot.flight))
 
-    def _poll(self, slot: _Slot) -> dict | None:
-        """The slot's outcome if its task has ended (reply, death or budget), else None."""
+    def _next(self) -> dict | None:
+        if self._exhausted:
+            return None
+        task = next(self._pending, None)
+        self._exhausted = task is None
+        return task
+
+    def _fill(self, slot: _Slot) -> None:
+        """Give an idle process a task: one to grade again alone first, else the next one."""
+        if self._again:
+            slot.send(self._again.popleft(), self.budget_s, alone=True)
+        elif (task := self._next()) is not None:
+            slot.send(task, self.budget_s)
+
+    def _offer(self, slot: _Slot) -> None:
+        """The process asks for its next task while it writes a report: one if allowed and there is one."""
+        alone = any(entry.alone for entry in slot.flight)
+        recycle = slot.done + len(slot.flight) >= self.recycle_after
+        task = None if alone or recycle or len(slot.flight) > 1 else self._next()
+        if task is None:
+            slot.decline()
+        else:
+            slot.send(task, self.budget_s)
+
+    def _poll(self, slot: _Slot) -> list[tuple[dict, dict]]:
+        """The tasks of this slot that ended (reply, death or budget), with their outcomes."""
         assert slot.conn is not None and slot.proc is not None
+        ended: list[tuple[dict, dict]] = []
         pipe_closed = False
         try:
-            if slot.conn.poll():
-                reply = json.loads(slot.conn.recv_bytes())
-                if reply.get("ok"):
-                    return {"status": "ok", "value": reply.get("value"), "message": ""}
-                return {"status": "crashed", "value": None,
-                        "message": f"the grader failed on this submission: {reply.get('message')}",
-                        "traceback": reply.get("traceback", "")}
+            while slot.flight and slot.conn.poll():
+                message = json.loads(slot.conn.recv_bytes())
+                if isinstance(message, dict) and message.get("want") is True:
+                    self._offer(slot)
+                    continue
+                task, seconds = slot.take()
+                ended.append((task, {**_reply_outcome(message), "seconds": seconds}))
         except (EOFError, OSError, ValueError):
             pipe_closed = True                        # the child closed its end: it died or is dying
+        if not slot.flight:
+            if slot.done >= self.recycle_after:
+                slot.close()
+            return ended
         if pipe_closed:
             try:
                 slot.proc.wait(timeout=5)
@@ -249,15 +272,31 @@ class WorkerPool:
                 kill_tree(slot.proc.pid)
                 slot.proc.wait(timeout=5)
         if slot.proc.poll() is not None:
-            message, output = exit_reason(slot.proc.returncode), slot.log_tail()
-            slot.close()
-            return {"status": "crashed", "value": None, "message": message, "traceback": output}
-        if time.monotonic() >= slot.deadline:
-            slot.close(kill=True)
-            return {"status": "timeout", "value": None,
-                    "message": f"grading took longer than {self.budget_s:g} s and was stopped"}
-        return None
+            outcome = {"status": "crashed", "value": None, "message": exit_reason(slot.proc.returncode),
+                       "traceback": slot.log_tail()}
+        elif time.monotonic() >= slot.flight[0].deadline:
+            slot.stop(kill=True)
+            outcome = {"status": "timeout", "value": None,
+                       "message": f"grading took longer than {self.budget_s:g} s and was stopped"}
+        else:
+            return ended
+        held, slot.flight = slot.flight, []
+        slot.close()
+        if len(held) == 1:
+            ended.append((held[0].task, {**outcome, "seconds": time.monotonic() - held[0].sent}))
+        else:
+            self._again.extend(entry.task for entry in held)
+        return ended
 
+
+def _reply_outcome(reply: object) -> dict:
+    """The outcome a grading process's reply stands for."""
+    if isinstance(reply, dict) and reply.get("ok"):
+        return {"status": "ok", "value": reply.get("value"), "message": ""}
+    reply = reply if isinstance(reply, dict) else {}
+    return {"status": "crashed", "value": None,
+            "message": f"the grader failed on this submission: {reply.get('message')}",
+            "traceback": reply.get("traceback", "")}
 
 def sweep_orphans(folder: Path | None = None) -> list[Path]:
     """Sweep the temporary folders of grading processes whose runner is gone (killed with SIGKILL, a
@@ -280,6 +319,3 @@ def _alive(pid: int) -> bool:
         return True
     return True
 
-
-if __name__ == "__main__":
-    _child_main(sys.argv[1], int(sys.argv[2]), int(sys.argv[3]))

@@ -14,11 +14,14 @@ The outcome is ``{"result": <result JSON>, "html": <report> | None}``.
 
 from __future__ import annotations
 
+import functools
 import tempfile
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 from grader.batch.cache import grader_fingerprint
+from grader.batch.grading_process import overlapped
 from grader.batch.submissions import unpack
 from grader.grading import grade_submission  # at import: a grading process loads it before its first task
 
@@ -27,8 +30,14 @@ class GraderMismatch(RuntimeError):
     """The grading process runs different grader code than the batch runner (a stale Dask worker)."""
 
 
-def grade_task(task: dict) -> dict:
-    """Grade one submission with :func:`grader.grading.grade_submission` (the seam every front door uses)."""
+def grade_first(task: dict) -> Callable[[], dict]:
+    """Grade one submission with :func:`grader.grading.grade_submission` (the seam every front door uses);
+    returns the second phase, which writes the HTML report and gives the outcome.
+
+    The student's worker is closed and their temporary copy deleted before this returns, so the second
+    phase only turns plain data into a page: a grading process may run it while the next submission's
+    worker starts (grader.batch.grading_process).
+    """
     expected = task.get("grader")
     if task.get("check_grader") and expected != (mine := grader_fingerprint()):
         raise GraderMismatch(f"this grading machine runs grader {mine}, the batch expects {expected}; "
@@ -43,21 +52,31 @@ def grade_task(task: dict) -> dict:
                                   # what the student types at home to replay a failing case: their own
                                   # ./assignments/weekN, not the batch's temporary folder
                                   replay_prefix=f"grade week{week}", traces=traces)
-        # The temporary path differs on every run and machine; the student's own name does not. It is
-        # replaced in the result's plain text, before the report renders (and escapes) it: never in HTML.
-        renamed = replace_text(result, str(submission), task.get("display") or task["student"])
-        assert isinstance(renamed, dict)  # replace_text keeps the shape of what it is given
-        result = renamed
-        timing = tm if isinstance(tm := result.get("timing"), dict) else {}
-        try:
-            from grader.report.html import render_report
-        except ImportError:  # a grader installed without its report package: the batch writes a plain page
-            html = None
-        else:
-            html = render_report(result, traces)
-        # the whole call, report writing included: what the batch adds is measured against this
-        result["timing"] = {**timing, "grade_submission_seconds": round(time.monotonic() - began, 3)}
-        return {"result": result, "html": html}
+    # The temporary path differs on every run and machine; the student's own name does not. It is
+    # replaced in the result's plain text, before the report renders (and escapes) it: never in HTML.
+    renamed = replace_text(result, str(submission), task.get("display") or task["student"])
+    assert isinstance(renamed, dict)  # replace_text keeps the shape of what it is given
+    return functools.partial(_with_report, renamed, traces, began)
+
+
+def _with_report(result: dict, traces: dict[str, dict], began: float) -> dict:
+    """The outcome: the result and its HTML report (None where the report package is not installed)."""
+    timing = tm if isinstance(tm := result.get("timing"), dict) else {}
+    try:
+        from grader.report.html import render_report
+    except ImportError:  # a grader installed without its report package: the batch writes a plain page
+        html = None
+    else:
+        html = render_report(result, traces)
+    # the whole call, report writing included: what the batch adds is measured against this
+    result["timing"] = {**timing, "grade_submission_seconds": round(time.monotonic() - began, 3)}
+    return {"result": result, "html": html}
+
+
+@overlapped(grade_first)
+def grade_task(task: dict) -> dict:
+    """Grade one submission and write its report: ``{"result": <result JSON>, "html": <page> | None}``."""
+    return grade_first(task)()
 
 
 def replace_text(value: object, old: str, new: str) -> object:
