@@ -282,11 +282,17 @@ class WorkerPool:
             return ended
         held, slot.flight = slot.flight, []
         slot.close()
-        if len(held) == 1:
-            ended.append((held[0].task, {**outcome, "seconds": time.monotonic() - held[0].sent}))
-        else:
-            self._again.extend(entry.task for entry in held)
-        return ended
+        blamed, again = blame(held, outcome)
+        self._again.extend(again)
+        return ended + blamed
+
+
+def blame(held: list[_InFlight], outcome: dict) -> tuple[list[tuple[dict, dict]], list[dict]]:
+    """Who a grading process's death or overrun counts against: (tasks with that outcome, tasks to
+    grade again alone). Only a task the process held alone is blamed; with two, either may be at fault."""
+    if len(held) == 1:
+        return [(held[0].task, {**outcome, "seconds": time.monotonic() - held[0].sent})], []
+    return [], [entry.task for entry in held]
 
 
 def _reply_outcome(reply: object) -> dict:
