@@ -8,9 +8,10 @@ It answers tasks until the task pipe closes. Everything crossing the pipes is pl
   for the oldest task it holds, or ``{"want": true}`` (ready to begin the next task).
 
 A grading function may be split in two phases (:func:`overlapped`): the first grades, the second writes
-the report. Between them the process asks for its next task and, if it gets one, writes the report in a
-thread while the next task's first phase begins: that submission is spliced and its sandboxed worker
-boots (a separate process, on the other core or in the gaps) while this one's HTML is rendered. Each
+the report. Between them the process asks for its next task and writes the report in a thread; if it
+gets a next task, that task's first phase begins meanwhile: the submission is spliced and its sandboxed
+worker boots (a separate process, on the other core or in the gaps) while the last one's HTML is
+rendered. Each
 submission still has its own worker, started only after its own splice; replies leave in task order,
 since a report thread is always joined before the process sends anything else.
 """
@@ -103,14 +104,16 @@ def serve(fn: GradeFn, tasks: Connection, replies: Connection) -> None:
             task = _receive(tasks)
             continue
         replies.send_bytes(WANT)
-        following = _receive(tasks)
-        if following is None or following.get("none"):
-            replies.send_bytes(call_to_reply(finish))
-            task = _receive(tasks) if following is not None else None
-            continue
+        # the report begins at once: the runner may take a moment to answer (it stores another result)
         writing = threading.Thread(target=lambda f=finish: replies.send_bytes(call_to_reply(f)),
                                    name="batch-report", daemon=True)
         writing.start()
+        following = _receive(tasks)
+        if following is None or following.get("none"):
+            writing.join()
+            writing = None
+            task = _receive(tasks) if following is not None else None
+            continue
         task = following
     if writing is not None:
         writing.join()
