@@ -35,7 +35,7 @@ def make_class(folder: Path, week: int, n: int, kind: str) -> None:
 
 
 def bench(week: int, jobs: int, n: int, kind: str, sandbox: str) -> dict:
-    from grader.batch.runner import BatchOptions, run_batch
+    from grader.batch.runner import BatchOptions, default_jobs, run_batch
 
     with tempfile.TemporaryDirectory(prefix="simiam-bench-") as tmp:
         klass, out = Path(tmp) / "class", Path(tmp) / "out"
@@ -49,8 +49,10 @@ def bench(week: int, jobs: int, n: int, kind: str, sandbox: str) -> dict:
     grading = [t["grade_submission_seconds"] for t in timings if "grade_submission_seconds" in t]
     harness = [t["batch_seconds"] - t["grade_submission_seconds"] for t in timings
                if "grade_submission_seconds" in t and "batch_seconds" in t]
+    cores = min(jobs, default_jobs())
     return {"week": week, "jobs": jobs, "n": n, "seconds": seconds, "per_minute": 60 * n / seconds,
             "cpu_per_submission": sw.usage.cpu / n, "wall_per_submission": seconds / n,
+            "busy": sw.usage.cpu / (seconds * cores),
             "graded": report["counts"]["graded"],
             "isolation": sorted({str(r.get("isolation")) for r in results}),
             "grade_s": sum(grading) / len(grading) if grading else float("nan"),
@@ -75,7 +77,8 @@ def main(argv: list[str] | None = None) -> int:
     print(machine_line(base.sandbox), flush=True)
     print("\n".join(base.lines()), flush=True)
     print(f"{'week':>4} {'jobs':>4} {'n':>4} {'seconds':>8} {'subs/min':>9} {'CPU s/sub':>9} {'x base':>6} "
-          f"{'wall s/sub':>10} {'x base':>6} {'grade s':>8} {'overhead s':>10}  isolation", flush=True)
+          f"{'wall s/sub':>10} {'x base':>6} {'grade s':>8} {'overhead s':>10} {'busy':>5}  isolation",
+          flush=True)
     for week in args.weeks:
         for jobs in args.jobs:
             row = bench(week, jobs, args.n, args.kind, args.sandbox)
@@ -85,13 +88,15 @@ def main(argv: list[str] | None = None) -> int:
                   f"{ratio(row['cpu_per_submission'], base.total.cpu):>6.1f} "
                   f"{row['wall_per_submission']:>10.2f} "
                   f"{ratio(row['wall_per_submission'], base.total.wall):>6.1f} "
-                  f"{row['grade_s']:>8.2f} {row['overhead_s']:>10.2f}  "
+                  f"{row['grade_s']:>8.2f} {row['overhead_s']:>10.2f} {row['busy']:>5.0%}  "
                   f"{','.join(row['isolation'])}{missing}", flush=True)
     print("CPU s/sub: CPU seconds of all processes per submission; wall s/sub: the run's wall time per "
           "submission (with --jobs 2, half a submission's own time); x base: divided by the baseline; "
           "grade s: mean wall time of grade_submission (HTML report included) per submission; overhead s: "
           "median batch time beyond it (unpacking, pipes, result files; a cold grading process's start-up "
-          "counts for its first submission only)")
+          "counts for its first submission only); busy: CPU seconds of all processes / (wall seconds x "
+          "min(jobs, cores)), how much of the cores the batch kept busy (on a shared machine the "
+          "neighbours take the rest)")
     print(load_after_line())
     return 0
 
