@@ -45,6 +45,7 @@ def bench(week: int, jobs: int, n: int, kind: str, sandbox: str) -> dict:
                                             quiet=True, force=True, sandbox=sandbox))
         seconds = sw.usage.wall
         results = [json.loads(p.read_text()) for p in out.glob("student*.json")]
+    finished = sorted(r["finished_s"] for r in report["per_student"].values() if "finished_s" in r)
     timings = [r.get("timing", {}) for r in results]
     grading = [t["grade_submission_seconds"] for t in timings if "grade_submission_seconds" in t]
     harness = [t["batch_seconds"] - t["grade_submission_seconds"] for t in timings
@@ -53,6 +54,9 @@ def bench(week: int, jobs: int, n: int, kind: str, sandbox: str) -> dict:
     return {"week": week, "jobs": jobs, "n": n, "seconds": seconds, "per_minute": 60 * n / seconds,
             "cpu_per_submission": sw.usage.cpu / n, "wall_per_submission": seconds / n,
             "busy": sw.usage.cpu / (seconds * cores),
+            # the last results, when fewer gradings than --jobs were left, and after the last one
+            "tail_s": finished[-1] - finished[-min(jobs, len(finished))] if finished else float("nan"),
+            "end_s": seconds - finished[-1] if finished else float("nan"),
             "graded": report["counts"]["graded"],
             "isolation": sorted({str(r.get("isolation")) for r in results}),
             "grade_s": sum(grading) / len(grading) if grading else float("nan"),
@@ -77,7 +81,8 @@ def main(argv: list[str] | None = None) -> int:
     print(machine_line(base.sandbox), flush=True)
     print("\n".join(base.lines()), flush=True)
     print(f"{'week':>4} {'jobs':>4} {'n':>4} {'seconds':>8} {'subs/min':>9} {'CPU s/sub':>9} {'x base':>6} "
-          f"{'wall s/sub':>10} {'x base':>6} {'grade s':>8} {'overhead s':>10} {'busy':>5}  isolation",
+          f"{'wall s/sub':>10} {'x base':>6} {'grade s':>8} {'overhead s':>10} {'busy':>5} "
+          f"{'tail s':>6} {'end s':>5}  isolation",
           flush=True)
     for week in args.weeks:
         for jobs in args.jobs:
@@ -88,7 +93,8 @@ def main(argv: list[str] | None = None) -> int:
                   f"{ratio(row['cpu_per_submission'], base.total.cpu):>6.1f} "
                   f"{row['wall_per_submission']:>10.2f} "
                   f"{ratio(row['wall_per_submission'], base.total.wall):>6.1f} "
-                  f"{row['grade_s']:>8.2f} {row['overhead_s']:>10.2f} {row['busy']:>5.0%}  "
+                  f"{row['grade_s']:>8.2f} {row['overhead_s']:>10.2f} {row['busy']:>5.0%} "
+                  f"{row['tail_s']:>6.2f} {row['end_s']:>5.2f}  "
                   f"{','.join(row['isolation'])}{missing}", flush=True)
     print("CPU s/sub: CPU seconds of all processes per submission; wall s/sub: the run's wall time per "
           "submission (with --jobs 2, half a submission's own time); x base: divided by the baseline; "
@@ -96,7 +102,9 @@ def main(argv: list[str] | None = None) -> int:
           "median batch time beyond it (unpacking, pipes, result files; a cold grading process's start-up "
           "counts for its first submission only); busy: CPU seconds of all processes / (wall seconds x "
           "min(jobs, cores)), how much of the cores the batch kept busy (on a shared machine the "
-          "neighbours take the rest)")
+          "neighbours take the rest); tail s: from the result that left fewer gradings than --jobs "
+          "running to the last result; end s: after the last result (class files, processes "
+          "stopping)")
     print(load_after_line())
     return 0
 

@@ -261,7 +261,9 @@ class _Run:
         write_atomic(self.out / f"{stem}.html", html or fallback_page(shown(sid), result))
         write_json(self.out / f"{stem}.json", result)
         status = result["status"]
-        self.record[sid] = {"status": status, "cached": False, "seconds": result["timing"]["batch_seconds"]}
+        self.record[sid] = {"status": status, "cached": False, "seconds": result["timing"]["batch_seconds"],
+                            # when, in this run: how long --jobs kept every grading process busy
+                            "finished_s": round(time.monotonic() - self.clock, 3)}
         if status != "graded":
             self.progress.message(f"{shown(sid)}: {status}: {str(result.get('message', ''))[:300]}")
         self.progress.done(status)
