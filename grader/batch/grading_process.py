@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import os
 import signal
 import sys
 import threading
@@ -126,6 +127,11 @@ def main(ref: str, task_fd: int, reply_fd: int) -> None:
     die_with_parent()
     tasks, replies = Connection(task_fd, writable=False), Connection(reply_fd, readable=False)
     serve(resolve(ref), tasks, replies)
+    # Every task is answered and the pool sweeps this process's TMPDIR: skip the interpreter's teardown
+    # (60-70 ms of CPU with numpy and jinja2 loaded, at the end of every batch and every recycling).
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(0)
 
 
 if __name__ == "__main__":
