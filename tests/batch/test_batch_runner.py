@@ -263,3 +263,20 @@ def test_exit_status_of_main(tmp_path: Path, monkeypatch) -> None:
     (tmp_path / "class" / "c" / "answer.txt").write_text("invalid")
     assert runner.main(args) == 1
     assert runner.main(argparse.Namespace(**{**vars(args), "week": "week9"})) == 2
+
+
+def test_a_regrade_starts_with_the_students_who_took_longest(tmp_path: Path, monkeypatch) -> None:
+    """So a slow or hung submission does not run alone at the end while the other processes idle. Never
+    graded here counts as the median (10 s: after a, by the class folder's order)."""
+    make_class(tmp_path / "class", {sid: "score 1" for sid in "abcde"})
+    run_batch(options(tmp_path, jobs=1), grade_fn=FAKE)
+    out = tmp_path / "out"
+    for sid, seconds in {"a": 10.0, "b": 1.0, "c": 50.0, "d": 2.0}.items():
+        stored = json.loads((out / f"{sid}.json").read_text())
+        stored["timing"]["batch_seconds"] = seconds
+        (out / f"{sid}.json").write_text(json.dumps(stored))
+    (out / "e.json").unlink()
+    calls = tmp_path / "calls"
+    monkeypatch.setenv("BATCH_CALLS", str(calls))
+    run_batch(options(tmp_path, jobs=1, force=True), grade_fn="batch_fake_grader:count_calls")
+    assert calls.read_text().split() == ["c", "a", "e", "d", "b"]
