@@ -20,6 +20,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from chain_stalls import ChainStalls
 from grading_baseline import measure_baseline
 
 from grader.sandbox.errors import SandboxUnavailable
@@ -40,10 +41,13 @@ def bench(week: int, jobs: int, n: int, kind: str, sandbox: str) -> dict:
     with tempfile.TemporaryDirectory(prefix="simiam-bench-") as tmp:
         klass, out = Path(tmp) / "class", Path(tmp) / "out"
         make_class(klass, week, n, kind)
+        stalls = ChainStalls()
         with Stopwatch() as sw:
+            stalls.start()
             report = run_batch(BatchOptions(week=week, batch_dir=klass, out=out, seed=2014, jobs=jobs,
                                             quiet=True, force=True, sandbox=sandbox))
-        seconds = sw.usage.wall
+            stalled = stalls.stop()
+        seconds, cpu = sw.usage.wall, sw.usage.cpu - stalls.own_cpu
         results = [json.loads(p.read_text()) for p in out.glob("student*.json")]
     finished = sorted(r["finished_s"] for r in report["per_student"].values() if "finished_s" in r)
     timings = [r.get("timing", {}) for r in results]
@@ -52,8 +56,10 @@ def bench(week: int, jobs: int, n: int, kind: str, sandbox: str) -> dict:
                if "grade_submission_seconds" in t and "batch_seconds" in t]
     cores = min(jobs, default_jobs())
     return {"week": week, "jobs": jobs, "n": n, "seconds": seconds, "per_minute": 60 * n / seconds,
-            "cpu_per_submission": sw.usage.cpu / n, "wall_per_submission": seconds / n,
-            "busy": sw.usage.cpu / (seconds * cores),
+            "cpu_per_submission": cpu / n, "wall_per_submission": seconds / n,
+            "busy": cpu / (seconds * cores),
+            # chain-seconds in which a grading process and its descendants could not run, per submission
+            "stalled_s": stalled * seconds * jobs / n,
             # the last results, when fewer gradings than --jobs were left, and after the last one
             "tail_s": finished[-1] - finished[-min(jobs, len(finished))] if finished else float("nan"),
             "end_s": seconds - finished[-1] if finished else float("nan"),
@@ -82,7 +88,7 @@ def main(argv: list[str] | None = None) -> int:
     print("\n".join(base.lines()), flush=True)
     print(f"{'week':>4} {'jobs':>4} {'n':>4} {'seconds':>8} {'subs/min':>9} {'CPU s/sub':>9} {'x base':>6} "
           f"{'wall s/sub':>10} {'x base':>6} {'grade s':>8} {'overhead s':>10} {'busy':>5} "
-          f"{'tail s':>6} {'end s':>5}  isolation",
+          f"{'stall s/sub':>11} {'tail s':>6} {'end s':>5}  isolation",
           flush=True)
     for week in args.weeks:
         for jobs in args.jobs:
@@ -94,7 +100,7 @@ def main(argv: list[str] | None = None) -> int:
                   f"{row['wall_per_submission']:>10.2f} "
                   f"{ratio(row['wall_per_submission'], base.total.wall):>6.1f} "
                   f"{row['grade_s']:>8.2f} {row['overhead_s']:>10.2f} {row['busy']:>5.0%} "
-                  f"{row['tail_s']:>6.2f} {row['end_s']:>5.2f}  "
+                  f"{row['stalled_s']:>11.3f} {row['tail_s']:>6.2f} {row['end_s']:>5.2f}  "
                   f"{','.join(row['isolation'])}{missing}", flush=True)
     print("CPU s/sub: CPU seconds of all processes per submission; wall s/sub: the run's wall time per "
           "submission (with --jobs 2, half a submission's own time); x base: divided by the baseline; "
@@ -102,7 +108,10 @@ def main(argv: list[str] | None = None) -> int:
           "median batch time beyond it (unpacking, pipes, result files; a cold grading process's start-up "
           "counts for its first submission only); busy: CPU seconds of all processes / (wall seconds x "
           "min(jobs, cores)), how much of the cores the batch kept busy (on a shared machine the "
-          "neighbours take the rest); tail s: from the result that left fewer gradings than --jobs "
+          "neighbours take the rest); stall s/sub: seconds per submission in which a grading process and "
+          "everything it started had no thread running or waiting for a core (benchmarks/chain_stalls.py: "
+          "idle the batch itself causes; waiting for a core taken by others does not count); "
+          "tail s: from the result that left fewer gradings than --jobs "
           "running to the last result; end s: after the last result (class files, processes "
           "stopping)")
     print(load_after_line())

@@ -242,10 +242,11 @@ class _Run:
             yield task
 
     def longest_first(self) -> list[Student]:
-        """The students in the order to grade them: those whose last grading into this folder took
-        longest first, so that a slow or hung submission does not run alone at the end while the other
-        grading processes have nothing left to do. Students with no earlier grading count as the median;
-        equals keep the class folder's order. Results do not depend on the order (one seed for all)."""
+        """The students in the order to grade them: the class folder's order, except that those whose
+        last grading into this folder took far longer than the typical one (a hung or very slow
+        submission: over twice the median plus 5 s) go first, longest first, so that they do not run
+        alone at the end while the other grading processes have nothing left to do. Results do not
+        depend on the order (one seed for all)."""
         last: dict[str, float] = {}
         for student in self.students:
             stored = read_json(self.out / f"{self.stems[student.id]}.json") or {}
@@ -254,8 +255,9 @@ class _Run:
             if type(seconds) in (int, float) and math.isfinite(seconds):
                 last[student.id] = seconds
         known = sorted(last.values())
-        typical = known[len(known) // 2] if known else 0.0
-        return sorted(self.students, key=lambda student: -last.get(student.id, typical))
+        slow = 2 * known[len(known) // 2] + 5.0 if known else math.inf
+        outliers = sorted((s for s in self.students if last.get(s.id, 0.0) > slow), key=lambda s: -last[s.id])
+        return outliers + [s for s in self.students if s not in outliers]
 
     def finish(self, task: dict, outcome: dict) -> None:
         """Store one student's outcome: HTML first, then the JSON that marks them done."""
