@@ -10,6 +10,9 @@ workers) and a private pipe pair:
 - a slot whose task runs past the wall budget has its whole process tree killed (the grading process and
   the sandboxed student workers it started), is reported as ``timeout`` and restarted;
 - a process that dies mid-task is reported as ``crashed`` (with its exit signal) and restarted;
+- a process may hold two tasks for a moment: it writes one student's report while the next one starts
+  (grader.batch.grading_process). If it dies or overruns then, neither is blamed: both are graded again,
+  each alone in a fresh process, and only a task that fails alone is reported;
 - processes stay warm between submissions (imports and numpy paid once) and are recycled every
   ``recycle_after`` tasks so a slow leak cannot build up over 400 submissions;
 - each grading process gets its own temporary folder (``TMPDIR``), where every copy of student code it
