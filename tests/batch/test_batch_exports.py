@@ -120,3 +120,27 @@ def test_progress_line_counts_rate_eta_and_modes() -> None:
     Progress(3, stream=quiet, quiet=True).done("graded")
     assert quiet.getvalue() == ""
     assert format_duration(3725) == "1h02m" and format_duration(59) == "59s"
+
+
+def test_every_gradescope_file_is_written_and_a_failed_write_is_raised(tmp_path, monkeypatch) -> None:
+    """The Gradescope files are written by several threads: all of them, and an error is not lost there
+    (the runner then says the batch stopped and that a rerun resumes)."""
+    import pytest
+
+    from grader.batch import exports
+
+    results = klass()
+    stems = {sid: sid for sid in results}
+    exports.write_exports(tmp_path, results, stems)
+    for sid in results:
+        assert json.loads((tmp_path / "gradescope" / sid / "results.json").read_text()) == \
+            json.loads(json.dumps(gradescope_result(results[sid])))
+    real = exports.write_json
+
+    def disk_full_for_carl(path, value, mode=None):
+        if path.parent.name == "carl":
+            raise OSError(28, "No space left on device")
+        real(path, value, mode)
+    monkeypatch.setattr(exports, "write_json", disk_full_for_carl)
+    with pytest.raises(OSError, match="No space left"):
+        exports.write_exports(tmp_path / "again", results, stems)
