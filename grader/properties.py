@@ -20,6 +20,7 @@ import zlib
 from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
+from grader.batched_cases import run_cases
 from grader.checks import Context, Mismatch, Outcome
 from grader.domains import Domain
 from grader.sandbox.errors import SandboxError, StudentError
@@ -97,14 +98,18 @@ def run_property(
                 status="error",
             )
         return _one(ctx, check_id, case, dict(ctx.case), replayed=True)
-    for inputs in examples:
-        found = _one(ctx, check_id, case, dict(inputs))
-        if found.fraction < 1.0:
-            return found
+    fixed = [dict(inputs) for inputs in examples]
     if not all(isinstance(d, Domain) for d in domains.values()):
+        found = run_cases(ctx, case, fixed, fresh=len(fixed))
+        if found is not None:
+            return _example_failed(ctx, check_id, fixed[found[0]], found[1])
         return _search(ctx, check_id, domains, case, max_examples, passed)
 
-    failing = _first_failure(ctx, check_id, domains, case, max_examples)
+    drawn = _draw(ctx, check_id, domains, max_examples)
+    found = run_cases(ctx, case, fixed + drawn, fresh=len(fixed))  # the probes of many cases together
+    if found is not None and found[0] < len(fixed):
+        return _example_failed(ctx, check_id, fixed[found[0]], found[1])
+    failing = None if found is None else _drawn_failed(ctx, check_id, drawn[found[0] - len(fixed)], found[1])
     if failing is None:
         return Outcome(1.0, f"{passed} ({max_examples} cases)",
                        {"cases": max_examples, "seed": case_seed(ctx, check_id)})
@@ -112,32 +117,35 @@ def run_property(
         return failing
     inputs, words = failing
     strategies = {name: d.strategy() for name, d in domains.items()}
-    found = _search(ctx, check_id, strategies, case, max_examples, passed)
-    if found.fraction < 1.0:
-        return found
+    shrunk = _search(ctx, check_id, strategies, case, max_examples, passed)
+    if shrunk.fraction < 1.0:
+        return shrunk
     return _failed(ctx, check_id, words, inputs)  # Hypothesis's search missed it: the drawn case as it is
 
 
-def _first_failure(ctx: Context, check_id: str, domains: Mapping[str, Domain], case: Case,
-                   max_examples: int) -> tuple[dict[str, Any], str] | Outcome | None:
-    """Run the drawn cases until one fails: None if all pass, (inputs, words) for a wrong answer or a
-    student exception, or the Outcome of a timeout or dead worker."""
+def _draw(ctx: Context, check_id: str, domains: Mapping[str, Domain],
+          max_examples: int) -> list[dict[str, Any]]:
+    """The drawn cases: the simplest first, as Hypothesis does; then both ends; then seeded draws."""
     rng = random.Random(case_seed(ctx, check_id))
-    fixed = ("simplest", "low", "high")  # the simplest case first, as Hypothesis does; then both ends
+    fixed = ("simplest", "low", "high")
+    cases = []
     for k in range(max_examples):
         if k < len(fixed):
-            inputs = {name: getattr(d, fixed[k])() for name, d in domains.items()}
+            cases.append({name: getattr(d, fixed[k])() for name, d in domains.items()})
         else:
-            inputs = {name: d.draw(rng) for name, d in domains.items()}
-        try:
-            case(ctx, **inputs)
-        except Mismatch as exc:
-            return inputs, str(exc)
-        except StudentError as exc:
-            return inputs, _sandbox_words(exc, inputs)
-        except SandboxError as exc:
-            return _fatal(ctx, check_id, exc, inputs)
-    return None
+            cases.append({name: d.draw(rng) for name, d in domains.items()})
+    return cases
+
+
+def _drawn_failed(ctx: Context, check_id: str, inputs: dict[str, Any],
+                  exc: BaseException) -> tuple[dict[str, Any], str] | Outcome:
+    """A drawn case that failed: (inputs, words) for a wrong answer or a student exception (Hypothesis
+    then searches), or the Outcome of a timeout or dead worker (no search on a worker that hangs)."""
+    if isinstance(exc, StudentError):
+        return inputs, _sandbox_words(exc, inputs)
+    if isinstance(exc, SandboxError):
+        return _fatal(ctx, check_id, exc, inputs)
+    return inputs, str(exc)
 
 
 def _search(ctx: Context, check_id: str, strategies: Mapping[str, Any], case: Case, max_examples: int,
@@ -198,28 +206,37 @@ def _search(ctx: Context, check_id: str, strategies: Mapping[str, Any], case: Ca
 def _one(ctx: Context, check_id: str, case: Case, inputs: dict[str, Any], replayed: bool = False) -> Outcome:
     """One case. A replay (`replayed`) also keeps the traceback of the student's code and a snippet that
     calls their function with these inputs (grader/replay.py)."""
-    from grader.replay import snippet, traceback_text
+    from grader.replay import snippet
 
     ctx.last_probe = None
     try:
         case(ctx, **inputs)
-    except Mismatch as exc:
-        found = _failed(ctx, check_id, str(exc), inputs)
-    except StudentError as exc:
-        found = _failed(ctx, check_id, _sandbox_words(exc, inputs), inputs)
-        found.details["traceback"] = traceback_text(exc)
-    except SandboxError as exc:  # a timeout or a dead worker on this case: say so, and how to replay it
-        from grader.checks import sandbox_message
-
-        status, message = sandbox_message(exc)
-        found = _failed(ctx, check_id, message, inputs)
-        found.status = status
+    except (Mismatch, SandboxError) as exc:
+        found = _example_failed(ctx, check_id, inputs, exc)
     else:
         return Outcome(1.0, "this case passes" if replayed else "", {"case": inputs})
     if replayed:
         code = snippet(ctx.submission, ctx.last_probe)
         if code:
             found.details["snippet"] = code
+    return found
+
+
+def _example_failed(ctx: Context, check_id: str, inputs: dict[str, Any], exc: BaseException) -> Outcome:
+    """The outcome of one given case (a fixed example or a replay) that raised `exc`: no search."""
+    if isinstance(exc, StudentError):
+        from grader.replay import traceback_text
+
+        found = _failed(ctx, check_id, _sandbox_words(exc, inputs), inputs)
+        found.details["traceback"] = traceback_text(exc)
+    elif isinstance(exc, SandboxError):  # a timeout or a dead worker on this case: say so, and the replay
+        from grader.checks import sandbox_message
+
+        status, message = sandbox_message(exc)
+        found = _failed(ctx, check_id, message, inputs)
+        found.status = status
+    else:
+        found = _failed(ctx, check_id, str(exc), inputs)
     return found
 
 

@@ -51,6 +51,7 @@ class Context:
     last_probe: tuple[str, dict[str, Any]] | None = None  # the last probe sent: what a replay repeats
     spliced: Any = None  # the spliced submission folder the session runs (a Path), when the engine has one
     open_session: Callable[[Any], Any] | None = None  # another session on a folder; the engine closes it
+    serving: Any = None  # while grader.batched_cases runs a case: its answers (probes are sent in batches)
 
     @property
     def config(self) -> Week:
@@ -63,10 +64,11 @@ class Context:
 
     def probe(self, name: str, **args: Any) -> Any:
         """Run probe `name` in the student's worker; the untrusted JSON answer."""
-        self.last_probe = (name, {"week": self.week, **args})
-        return self.session.call(
-            "probe", name=name, args={"week": self.week, **args}, timeout=self.call_seconds
-        )
+        full = {"week": self.week, **args}
+        self.last_probe = (name, full)
+        if self.serving is not None:  # a property's cases run batched: the answer comes from the batch
+            return self.serving.answer(name, full)
+        return self.session.call("probe", name=name, args=full, timeout=self.call_seconds)
 
 
 # What the report can draw for a scenario run (grader/report/svg.py): the path in the world, the heading

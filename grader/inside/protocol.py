@@ -31,6 +31,30 @@ def encode(message: dict) -> bytes:
     return json.dumps(message, allow_nan=False, separators=(",", ":")).encode() + b"\n"
 
 
+def encode_request(message: dict) -> bytes:
+    """A grader's request as a line of JSON. What the grader builds is almost always plain JSON already
+    (floats, lists, tuples, dicts), which json writes directly; a non-finite float, a numpy number or
+    anything else json refuses takes the long way through `to_json` (the tagged form, or NotJSON)."""
+    try:
+        return json.dumps(message, allow_nan=False, separators=(",", ":")).encode() + b"\n"
+    except (ValueError, TypeError):
+        return encode(to_json(message))
+
+
+def decode_request(line: bytes) -> dict:
+    """Parse one of the grader's requests (inside the worker). The grader is trusted and wrote it with
+    `encode_request`, so plain json reads it; only a tagged non-finite float needs the strict decoder."""
+    if b'"$float"' in line:
+        return decode(line)
+    try:
+        value = json.loads(line)
+    except (ValueError, RecursionError) as exc:  # UnicodeDecodeError is a ValueError
+        raise ProtocolError(f"malformed message: {type(exc).__name__}") from None
+    if not isinstance(value, dict):
+        raise ProtocolError("message is not a JSON object")
+    return value
+
+
 def _reject_constant(token: str) -> Any:
     raise ProtocolError(f"non-JSON number {token!r} in message")
 

@@ -15,10 +15,11 @@ import signal
 import sys
 import threading
 import traceback
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-from grader.inside.protocol import LineReader, NotJSON, ProtocolError, decode, encode, to_json
+from grader.inside.protocol import LineReader, NotJSON, ProtocolError, decode_request, encode, to_json
 
 
 class _Worker:
@@ -71,6 +72,22 @@ class _Worker:
         return self.brain.step(request["readings"])
 
     # ---- framing ---------------------------------------------------------------------------------
+    def answers(self, request: dict) -> Iterator[dict]:
+        """The response(s) to one request: one, except for `probe_many`, which runs its probes in order and
+        answers each on its own as soon as it is done, with the ids id, id + 1, ... (the grader reserved
+        them), so a probe that hangs or kills this process leaves the answers before it with the grader."""
+        if request.get("op") != "probe_many":
+            yield self.handle(request)
+            return
+        rid, probes = request.get("id"), request.get("probes")
+        if type(rid) is not int or not isinstance(probes, list):
+            yield {"id": rid, "ok": False, "error": {"type": "ProtocolError", "message": "bad probe_many"}}
+            return
+        for offset, probe in enumerate(probes):
+            fields = probe if isinstance(probe, dict) else {}
+            yield self.handle({"name": fields.get("name"), "args": fields.get("args"), "op": "probe",
+                               "id": rid + offset})
+
     def handle(self, request: dict) -> dict:
         rid = request.get("id")
         op = getattr(self, f"op_{request.get('op')}", None)
@@ -139,20 +156,25 @@ def serve(config: dict) -> None:
             reader.feed(data)
             continue
         try:
-            request = decode(line)
+            request = decode_request(line)
         except ProtocolError:
             return
-        response = worker.handle(request)
-        for stream in (sys.stdout, sys.stderr):
+        for response in worker.answers(request):
+            _flush_student_output()
             try:
-                stream.flush()
-            except BaseException:  # noqa: BLE001, S110 - student may have replaced or closed them
-                pass
+                _send(fd_out, response)
+            except (ValueError, TypeError):
+                _send(fd_out, {"id": response.get("id"), "ok": False,
+                               "error": {"type": "NotJSON", "message": "the answer could not be encoded"}})
+
+
+def _flush_student_output() -> None:
+    """What the student printed reaches the grader's output pipe before the answer it belongs to."""
+    for stream in (sys.stdout, sys.stderr):
         try:
-            _send(fd_out, response)
-        except (ValueError, TypeError):
-            _send(fd_out, {"id": response.get("id"), "ok": False,
-                           "error": {"type": "NotJSON", "message": "the answer could not be encoded"}})
+            stream.flush()
+        except BaseException:  # noqa: BLE001, S110 - student may have replaced or closed them
+            pass
 
 
 def _send(fd: int, message: dict) -> None:

@@ -22,7 +22,7 @@ import subprocess
 import sys
 import time
 
-from grader.inside.protocol import LineReader, ProtocolError, decode, encode
+from grader.inside.protocol import MAX_MESSAGE, LineReader, ProtocolError, decode, encode_request
 from grader.sandbox.errors import StudentTimeout, WorkerDied
 from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
 from grader.sandbox.leftovers import remove_ipc_of
@@ -41,6 +41,10 @@ _SIGNAL_MEANING: dict[int, str] = {
 }
 
 
+class RequestTooLarge(ValueError):
+    """A request above the message cap (the grader's own doing: nothing was sent)."""
+
+
 class WorkerProcess:
     """A started worker. `request()` sends one message and waits for its answer until a deadline."""
 
@@ -52,6 +56,7 @@ class WorkerProcess:
         # The worker's stack dumps (faulthandler on SIGUSR1) come back on a third pipe, read only on timeout.
         self._dump_r, dump_w = os.pipe()
         os.set_blocking(self._dump_r, False)
+        os.set_blocking(self._req_w, False)  # see _write
         config = dict(plan.config, fd_in=req_r, fd_out=resp_w, fd_dump=dump_w)
         argv = plan.argv[:-1] + [_json(config)]
         try:
@@ -63,6 +68,8 @@ class WorkerProcess:
                 os.close(fd)
         self.output = CappedOutput(out_r, output_cap)
         self._reader = LineReader()
+        self._answers = select.poll()  # kept: one poll object for every answer, not one per wait
+        self._answers.register(self._resp_r, select.POLLIN)
         self._next_id = 1
         self.started = time.monotonic()
         self.dead: str | None = None
@@ -79,22 +86,42 @@ class WorkerProcess:
 
     def request(self, op: str, fields: dict, timeout: float) -> dict:
         """Send {"id", "op", **fields}; return the response dict (ok/value or ok/error)."""
+        rid = self.send(op, fields)
+        return self.receive(rid, timeout, op)
+
+    def send(self, op: str, fields: dict, answers: int = 1) -> int:
+        """Send {"id", "op", **fields} without waiting; the id of its first answer. The request reserves
+        `answers` ids (id, id + 1, ...): a `probe_many` of n probes is answered n times, each answer with
+        its own id, and nothing else may stand in for them."""
         if self.dead:
             raise WorkerDied(self.dead)
         rid = self._next_id
-        self._next_id += 1
+        data = encode_request({**fields, "id": rid, "op": op})
+        if answers > 1 and len(data) > MAX_MESSAGE:  # the worker would refuse it: the grader splits it
+            raise RequestTooLarge(f"a {op} request of {len(data)} bytes")
+        self._next_id += answers
         try:
-            self._write(encode({**fields, "id": rid, "op": op}))
-        except (BrokenPipeError, OSError):
+            self._write(data)
+        except OSError:  # BrokenPipeError among them
             self._die("it stopped reading requests")
+        return rid
+
+    def receive(self, rid: int, timeout: float, op: str) -> dict:
+        """The answer with id `rid`, within `timeout` seconds from now (see `_receive`)."""
+        if self.dead:
+            raise WorkerDied(self.dead)
         return self._receive(rid, time.monotonic() + timeout, op)
 
     def _write(self, data: bytes) -> None:
+        """Write first and wait only when the pipe is full (the request pipe is non-blocking): a request
+        of a few hundred bytes costs one system call, and a worker that stops reading costs 5 s at most."""
         view = memoryview(data)
         while view:
-            if not _wait(self._req_w, select.POLLOUT, 5.0):
-                self._die("it stopped reading requests")
-            view = view[os.write(self._req_w, view):]
+            try:
+                view = view[os.write(self._req_w, view):]
+            except BlockingIOError:
+                if not _wait(self._req_w, select.POLLOUT, 5.0):
+                    self._die("it stopped reading requests")
 
     def _receive(self, rid: int, deadline: float, op: str) -> dict:
         while True:
@@ -117,7 +144,7 @@ class WorkerProcess:
                 self.kill()
                 what = "the worker did not start" if op == "start" else "no answer"
                 raise StudentTimeout(f"{what} within the time limit")
-            if not _wait(self._resp_r, select.POLLIN, left):
+            if not self._answers.poll(max(0, int(left * 1000) + 1)):
                 continue
             data = os.read(self._resp_r, 1 << 16)
             if not data:

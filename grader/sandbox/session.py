@@ -33,17 +33,17 @@ from grader.inside.caps import (
     TYPE_CHARS,
     clip,
 )
-from grader.inside.protocol import to_json
 from grader.sandbox import isolation
 from grader.sandbox.capabilities import has_module, with_refused_limits
 from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeout, WorkerDied
 from grader.sandbox.exposed import build_library
 from grader.sandbox.limits import Limits
-from grader.sandbox.runner import WorkerProcess
+from grader.sandbox.runner import RequestTooLarge, WorkerProcess
 from grader.sandbox.stuck import Stuck, find_stuck
 from grader.sandbox.workdir import WorkCopy
 
 _KEEP_OUTPUTS = 8  # output of the last workers of a session shown in feedback
+PROBES_PER_REQUEST = 64  # a property check's cases fit in one request (25 or 50 of them, mostly)
 
 
 class StudentSession:
@@ -97,6 +97,35 @@ class StudentSession:
             return self.load()
         self._ensure_worker()
         return self._request(op, fields, timeout)
+
+    def probe_many(self, probes: list[dict], timeout: float | None = None) -> list[Any]:
+        """Run several probes ({"name", "args"} each) in order in one request; per probe, its JSON value
+        (untrusted, like call's) or the SandboxError call would have raised for it.
+
+        The worker answers each probe as soon as it is done, and each answer gets the per-call limit
+        counted from the answer before it: a probe that hangs times out as itself, and the worker is
+        then killed as after any timeout. The list stops after a timeout or a dead worker (the probes
+        after it were not run); a student error in one probe is that probe's answer, and the worker goes
+        on with the next. Every answer is read, so nothing of this request is left for a later call.
+        """
+        if not probes:
+            return []
+        results: list[Any] = []
+        todo = [probes[i:i + PROBES_PER_REQUEST] for i in range(0, len(probes), PROBES_PER_REQUEST)]
+        while todo:
+            chunk = todo.pop(0)
+            try:
+                self._ensure_worker()
+                results += self._stream(chunk, timeout)
+            except RequestTooLarge:  # nothing was sent: the same probes in two requests
+                half = len(chunk) // 2
+                todo[:0] = [chunk[:half], chunk[half:]]
+                continue
+            except (StudentTimeout, WorkerDied) as exc:  # no worker, or no budget left: what call raises
+                return [*results, exc]
+            if isinstance(results[-1], (StudentTimeout, WorkerDied)):
+                break
+        return results
 
     def output(self) -> str:
         """What the student's code printed (stdout and stderr together), truncated for feedback."""
@@ -179,22 +208,58 @@ class StudentSession:
 
     def _request(self, op: str, fields: dict, timeout: float | None) -> Any:
         assert self._worker is not None
-        limit = min(timeout or self.limits.call_seconds, self._budget_left())
+        per_call = timeout or self.limits.call_seconds
+        limit = min(per_call, self._budget_left())
         began = time.monotonic()
         self.calls += 1
         try:
-            response = self._worker.request(op, to_json(fields), limit)
+            response = self._worker.request(op, fields, limit)
         except StudentTimeout:
-            if limit < (timeout or self.limits.call_seconds):
-                why = f"the submission used up its total time of {self.limits.total_seconds:g} s"
-            else:
-                why = f"no answer within {limit:g} s, the time limit per call"
-            raise _timeout(why, self._stuck_at()) from None
+            raise self._timed_out(limit, per_call) from None
         finally:
             self.seconds_used += time.monotonic() - began
         if response["ok"]:
             return response.get("value")
         raise _student_error(response.get("error"))
+
+    def _stream(self, probes: list[dict], timeout: float | None) -> list[Any]:
+        """One `probe_many` request and its answers, each read with its own limit (see probe_many)."""
+        worker = self._worker
+        assert worker is not None
+        per_call = timeout or self.limits.call_seconds
+        began = time.monotonic()
+        try:
+            first = worker.send("probe_many", {"probes": probes}, answers=len(probes))
+        finally:
+            self.seconds_used += time.monotonic() - began
+        results: list[Any] = []
+        for offset in range(len(probes)):
+            try:
+                limit = min(per_call, self._budget_left())
+            except StudentTimeout as exc:  # the answers still to come must never reach a later call
+                worker.kill()
+                return [*results, exc]
+            began = time.monotonic()
+            self.calls += 1
+            try:
+                response = worker.receive(first + offset, limit, "probe")
+            except StudentTimeout:  # the worker was killed: the probes after this one never ran
+                return [*results, self._timed_out(limit, per_call)]
+            except WorkerDied as exc:
+                return [*results, exc]
+            finally:
+                self.seconds_used += time.monotonic() - began
+            results.append(response.get("value") if response["ok"] else _student_error(response.get("error")))
+        return results
+
+    def _timed_out(self, limit: float, per_call: float) -> StudentTimeout:
+        """The timeout of a call given `limit` seconds, in words: the per-call limit, or the submission's
+        total time when that was less, and where the student's code was stuck (from the stack dump)."""
+        if limit < per_call:
+            why = f"the submission used up its total time of {self.limits.total_seconds:g} s"
+        else:
+            why = f"no answer within {limit:g} s, the time limit per call"
+        return _timeout(why, self._stuck_at())
 
     def _stuck_at(self) -> Stuck | None:
         """Where the student's code was when the last call timed out (from the worker's stack dump)."""
