@@ -120,6 +120,14 @@ def instrument(week: int) -> Timers:
     timers = Timers()
     patch(StudentSession, "load", timers, "worker start and load", worker=True)
     patch(StudentSession, "call", timers, lambda a, k: f"round trip: {a[1]}")
+    patch(StudentSession, "probe_many", timers, "round trip: probe_many")
+    many = StudentSession.probe_many
+
+    def counted(self, probes, *args, **kwargs):  # how many probes went in the probe_many requests
+        timers.count["probes in probe_many"] += len(probes)
+        return many(self, probes, *args, **kwargs)
+
+    StudentSession.probe_many = counted
     patch(RemoteBrain, "step", timers, "scenario steps (round trip + command check)")
     patch(grading, "_splice", timers, "splice (skeleton check included)")
     patch(grading, "write_outputs", timers, "report: JSON and HTML")
@@ -140,7 +148,9 @@ def grade_once(week: int, sandbox: str, out: Path) -> tuple[float, float, float,
 
 def print_phases(timers: Timers, wall: float, cpu: float, worker_cpu: float) -> None:
     w, c, wk, n = timers.wall, timers.cpu, timers.worker, timers.count
-    probes, steps = "round trip: probe", "scenario steps (round trip + command check)"
+    steps = "scenario steps (round trip + command check)"
+    probes = sum(w[k] for k in ("round trip: probe", "round trip: probe_many") if k in w)
+    probes_cpu = sum(c[k] for k in ("round trip: probe", "round trip: probe_many") if k in c)
     prop, scen = "property checks (all)", "scenario runs (all)"
     rows = [
         ("splice (skeleton check included)", w["splice (skeleton check included)"],
@@ -148,8 +158,8 @@ def print_phases(timers: Timers, wall: float, cpu: float, worker_cpu: float) -> 
         ("worker start and load", w["worker start and load"], c["worker start and load"],
          wk["worker start and load"]),
         ("property checks", w[prop], c[prop], wk[prop]),
-        ("  probe round trips", w[probes], c[probes], None),
-        ("  the rest: drawing cases, reference maths", w[prop] - w[probes], c[prop] - c[probes], None),
+        ("  probe round trips", probes, probes_cpu, None),
+        ("  the rest: drawing cases, reference maths", w[prop] - probes, c[prop] - probes_cpu, None),
         ("scenario runs", w[scen], c[scen], wk[scen]),
         ("  brain_step round trips", w[steps], c[steps], None),
         ("  the rest: physics, trace, metrics", w[scen] - w[steps], c[scen] - c[steps], None),
@@ -165,9 +175,10 @@ def print_phases(timers: Timers, wall: float, cpu: float, worker_cpu: float) -> 
     for label, secs, cpus, work in rows:
         work_text = "" if work is None else f"{work * 1000:14.0f}"
         print(f"  {label:50s} {secs * 1000:8.0f} {cpus * 1000:14.0f} {work_text}")
-    for key in sorted(k for k in w if k.startswith("round trip: ")):
+    for key in sorted(k for k in w if k.startswith("round trip: ") and n[k]):
+        extra = f" ({n['probes in probe_many']} probes)" if key.endswith("probe_many") else ""
         print(f"  {key:30s} {n[key]:5d} calls, {w[key] / n[key] * 1e6:6.0f} us wall, "
-              f"{c[key] / n[key] * 1e6:6.0f} us grader CPU each")
+              f"{c[key] / n[key] * 1e6:6.0f} us grader CPU each{extra}")
 
 
 # ---- 3. Hypothesis per case -------------------------------------------------------------------------
@@ -186,6 +197,9 @@ class InProcessSession:
             raise RuntimeError(answer["error"])
         return json.loads(json.dumps(answer["value"]))
 
+    def probe_many(self, probes: list, timeout: float | None = None) -> list:
+        return [self.call("probe", **probe) for probe in probes]
+
 
 def property_engine_cost(week: int) -> list[tuple[str, int, float, float]]:
     """Per property check of `week`: (id, cases, CPU seconds under run_property, CPU seconds of calling
@@ -200,8 +214,8 @@ def property_engine_cost(week: int) -> list[tuple[str, int, float, float]]:
         inputs: list[dict] = []
 
         def keep(ctx, **args):
+            case(ctx, **args)  # a run that stops at a probe to be batched (NeedsProbe) is not kept
             inputs.append(dict(args))
-            return case(ctx, **args)
 
         t0 = time.thread_time()
         outcome = original(ctx, check_id, strategies, keep, **kw)

@@ -40,11 +40,9 @@ class Served:
     def __init__(self) -> None:
         self.asked: list[tuple[str, dict[str, Any]]] = []
         self.answers: list[Any] = []
-        self.used = 0     # answers taken in the case's current run
-        self.handed = 0   # answers taken in its earlier runs: handed out again as copies
+        self.used = 0  # answers taken in the case's current run
 
     def start_run(self) -> None:
-        self.handed = max(self.handed, self.used)
         self.used = 0
 
     def answer(self, name: str, args: dict[str, Any]) -> Any:
@@ -60,7 +58,7 @@ class Served:
         value = self.answers[k]
         if isinstance(value, SandboxError):
             raise value
-        return _copy(value) if k < self.handed else value
+        return _copy(value)  # a case run again (one with several probes) gets it as it came
 
 
 def _copy(value: Any) -> Any:

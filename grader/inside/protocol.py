@@ -73,13 +73,16 @@ def _no_duplicates(pairs: list[tuple[str, Any]]) -> dict:
     return out
 
 
+# built once: json.loads with hooks builds a new decoder (and its scanner) for every message
+_STRICT = json.JSONDecoder(parse_constant=_reject_constant, object_pairs_hook=_no_duplicates)
+
+
 def decode(line: bytes) -> dict:
     """Parse one message strictly; raises ProtocolError on anything but a JSON object."""
     if len(line) > MAX_MESSAGE:
         raise ProtocolError(f"message of {len(line)} bytes exceeds the {MAX_MESSAGE} byte cap")
     try:
-        value = json.loads(line.decode("utf-8"), parse_constant=_reject_constant,
-                           object_pairs_hook=_no_duplicates)
+        value = _STRICT.decode(line.decode("utf-8"))
     except ProtocolError:
         raise
     except (ValueError, RecursionError, UnicodeDecodeError) as exc:

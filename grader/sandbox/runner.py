@@ -112,6 +112,13 @@ class WorkerProcess:
             raise WorkerDied(self.dead)
         return self._receive(rid, time.monotonic() + timeout, op)
 
+    def no_more_answers(self) -> None:
+        """After the last answer of a `probe_many`: anything already read beyond it is an answer nobody
+        asked for, a protocol violation. (One that arrives later can only stand in for the answer to the
+        next request, as a forged line can for any request: every answer is validated.)"""
+        if self._reader.pending:
+            self._die("it sent more answers than it was asked for")
+
     def _write(self, data: bytes) -> None:
         """Write first and wait only when the pipe is full (the request pipe is non-blocking): a request
         of a few hundred bytes costs one system call, and a worker that stops reading costs 5 s at most."""

@@ -250,6 +250,10 @@ class StudentSession:
             finally:
                 self.seconds_used += time.monotonic() - began
             results.append(response.get("value") if response["ok"] else _student_error(response.get("error")))
+        try:
+            worker.no_more_answers()
+        except WorkerDied as exc:  # the extra came with the last probe: that probe broke the protocol
+            results[-1] = exc
         return results
 
     def _timed_out(self, limit: float, per_call: float) -> StudentTimeout:

@@ -6,7 +6,7 @@
 
 from types import SimpleNamespace
 
-__all__ = ["attack", "uni_to_diff", "echo"]
+__all__ = ["attack", "uni_to_diff", "echo", "nap"]
 
 
 def _robot() -> SimpleNamespace:
@@ -23,6 +23,14 @@ def attack(sub, fn: str = "attack", **args):
 
 def echo(sub, value=None):
     return value
+
+
+def nap(sub, seconds: float = 0.0):
+    """Sleep `seconds`, then answer them: a slow but honest probe."""
+    import time
+
+    time.sleep(seconds)
+    return seconds
 
 
 def not_allowed(sub):  # public but not in __all__: the worker must refuse it
