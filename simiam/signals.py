@@ -210,6 +210,8 @@ def clean_debug(debug: Any, signals: tuple[Signal, ...], n_ir: int, plan: Plan |
 
 def plain(x: Any) -> Any:
     """A real number as a Python float (numpy scalars included); anything else unchanged."""
+    if type(x) is float:  # most values, every step of a run: spare them the ABC checks below
+        return x
     if isinstance(x, numbers.Real) and not isinstance(x, bool):
         try:
             return float(x)

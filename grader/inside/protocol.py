@@ -26,9 +26,13 @@ class ProtocolError(Exception):
     """A message that is not a well-formed, size-capped, JSON-only object."""
 
 
+# built once: json.dumps with options builds a new encoder for every message
+_WRITER = json.JSONEncoder(allow_nan=False, separators=(",", ":"))
+
+
 def encode(message: dict) -> bytes:
     """One message as a line of JSON (the grader only sends JSON it built; `allow_nan=False` keeps it so)."""
-    return json.dumps(message, allow_nan=False, separators=(",", ":")).encode() + b"\n"
+    return _WRITER.encode(message).encode() + b"\n"
 
 
 def encode_request(message: dict) -> bytes:
@@ -36,7 +40,7 @@ def encode_request(message: dict) -> bytes:
     (floats, lists, tuples, dicts), which json writes directly; a non-finite float, a numpy number or
     anything else json refuses takes the long way through `to_json` (the tagged form, or NotJSON)."""
     try:
-        return json.dumps(message, allow_nan=False, separators=(",", ":")).encode() + b"\n"
+        return _WRITER.encode(message).encode() + b"\n"
     except (ValueError, TypeError):
         return encode(to_json(message))
 
@@ -132,16 +136,16 @@ def to_json(value: Any, *, depth: int = 0) -> Any:
     if depth > 32:
         raise NotJSON("a value nested more than 32 levels deep")
     kind = type(value)
+    if kind is float:  # the commonest by far: wheel speeds, poses, readings
+        return value if math.isfinite(value) else {_FLOAT_TAG: _nonfinite_name(value)}
+    if kind is list or kind is tuple:
+        return [to_json(v, depth=depth + 1) for v in value]
     if value is None or kind is bool or kind is str:
         return value
     if kind is int:
         if value.bit_length() > 1024:
             raise NotJSON("an integer too large to be a number of this course")
         return value
-    if kind is float:
-        return value if math.isfinite(value) else {_FLOAT_TAG: _nonfinite_name(value)}
-    if kind in (list, tuple):
-        return [to_json(v, depth=depth + 1) for v in value]
     if kind is dict:
         out = {}
         for key, item in value.items():
