@@ -25,6 +25,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from grader.checks import Context, Mismatch
+from grader.inside.protocol import encode_request
 from grader.sandbox.errors import SandboxError
 
 
@@ -47,7 +48,7 @@ class Served:
 
     def answer(self, name: str, args: dict[str, Any]) -> Any:
         k = self.used
-        if k < len(self.asked) and self.asked[k] != (name, args):
+        if k < len(self.asked) and self.asked[k] != (name, args) and not _same(self.asked[k], (name, args)):
             raise RuntimeError(f"a property case asked for probe {name!r} with other inputs when run again: "
                                "case functions must depend on their inputs and answers only")
         if k == len(self.asked):
@@ -59,6 +60,11 @@ class Served:
         if isinstance(value, SandboxError):
             raise value
         return _copy(value)  # a case run again (one with several probes) gets it as it came
+
+
+def _same(asked: tuple[str, dict], again: tuple[str, dict]) -> bool:
+    """The same request as sent: == says no to a NaN computed afresh in each run, the JSON says yes."""
+    return encode_request({"probe": asked}) == encode_request({"probe": again})
 
 
 def _copy(value: Any) -> Any:

@@ -5,6 +5,7 @@ same answers, timeouts and dead workers attributed to their own case, and the sa
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Any
 
@@ -171,6 +172,22 @@ def test_a_case_that_changes_the_answer_it_was_given_gets_it_fresh_when_run_agai
             raise Mismatch(f"served {first} and {second}")
 
     (found, _, _), (plain_found, _, _) = _both(_double, case, CASES)
+    assert found is None and plain_found is None
+
+
+def test_a_probe_built_from_a_nan_answer_is_the_same_probe_when_the_case_runs_again() -> None:
+    """float("nan") != float("nan"): the check that a case asks the same again must not call a NaN
+    computed afresh in each run another question."""
+    def answer(name: str, args: dict) -> Any:
+        return [math.nan] if args["x"] == 1.0 else [2 * args["x"]]
+
+    def case(ctx: Context, x: float) -> None:
+        one = ctx.probe("double", x=1.0)[0]
+        got = ctx.probe("double", x=x + one * 0.5)  # a new NaN object each run
+        if not math.isnan(got[0]):
+            raise Mismatch(f"with x = {x} got {got}")
+
+    (found, _, _), (plain_found, _, _) = _both(answer, case, CASES)
     assert found is None and plain_found is None
 
 

@@ -98,3 +98,23 @@ def test_deep_nesting_is_refused():
         deep = [deep]
     with pytest.raises(NotJSON, match="nested"):
         to_json(deep)
+
+
+def test_requests_go_the_short_way_and_still_carry_what_json_cannot():
+    """The grader's requests skip the to_json walk when json can write them as they are; a non-finite
+    float or a numpy number takes the long way, and the worker reads both back."""
+    from grader.inside.protocol import decode_request, encode_request
+
+    plain = {"id": 1, "op": "brain_step", "readings": {"t": 0.5, "ticks": (1, 2), "ir_raw": [200] * 5}}
+    assert encode_request(plain) == encode(to_json(plain))
+    assert decode_request(encode_request(plain).rstrip(b"\n"))["readings"]["ticks"] == [1, 2]
+    odd = {"id": 2, "op": "probe", "args": {"x": math.nan, "y": -math.inf, "z": numpy.float32(0.5),
+                                            "n": numpy.int64(3)}}
+    args = decode_request(encode_request(odd).rstrip(b"\n"))["args"]
+    assert math.isnan(args["x"]) and args["y"] == -math.inf and args["z"] == 0.5 and args["n"] == 3
+    with pytest.raises(NotJSON):
+        encode_request({"id": 3, "op": "probe", "args": {"x": object()}})
+    with pytest.raises(ProtocolError):
+        decode_request(b"[1, 2]")
+    with pytest.raises(ProtocolError):
+        decode_request(b'{"id": 1, "op": ')
