@@ -134,3 +134,12 @@ def test_swapped_or_forged_ids_kill_the_worker_at_that_answer(lying_session, lie
     assert "does not match the question" in answers[-1].message
     session.probe_many(THREE)
     assert session.starts == 2
+
+
+def test_a_batch_above_the_message_cap_goes_in_several_requests(open_one):
+    """Three probes of 1.5 MB each would make a 4.5 MB request, above the cap the worker enforces: the
+    grader splits it, and each probe is still answered."""
+    session = open_one("_honest")
+    big = "x" * 1_500_000
+    answers = session.probe_many([{"name": "echo", "args": {"value": big}}] * 3)
+    assert answers == [big] * 3 and session.starts == 1
