@@ -15,6 +15,7 @@ the report stays small; `replays="files"` writes the replay pages next to the re
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import re
@@ -59,7 +60,11 @@ def page_text(value: Any) -> Any:
     return printable(value) if isinstance(value, str) and not isinstance(value, Markup) else value
 
 
+@functools.lru_cache(maxsize=1)
 def _env() -> jinja2.Environment:
+    """The report's environment, built once per process: its templates compile on first use and stay
+    compiled (36 ms a report otherwise). Nothing in it depends on a result: every value reaches the
+    templates as a render argument, still autoescaped and passed through `page_text`."""
     env = jinja2.Environment(loader=jinja2.PackageLoader("grader.report", "templates"), autoescape=True,
                              undefined=jinja2.ChainableUndefined, trim_blocks=True, lstrip_blocks=True,
                              finalize=page_text)

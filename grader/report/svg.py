@@ -27,6 +27,8 @@ def _n(v: float) -> str:
 
 
 def _finite(v) -> TypeGuard[float]:
+    if type(v) is float:  # the common case first: a plot calls this once per point
+        return v - v == 0.0  # False for inf and nan only
     return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
 
 

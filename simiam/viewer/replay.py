@@ -9,6 +9,7 @@ time cursor. Its script and style are inlined from `static/`, so the file opens 
 from __future__ import annotations
 
 import base64
+import functools
 import hashlib
 import json
 import math
@@ -36,6 +37,11 @@ class TraceFormatError(ValueError):
 
 def _num(v: Any, digits: int) -> float | None:
     """A JSON-safe rounded number; None, NaN, inf and non-numbers become None (null in the page)."""
+    if type(v) is float:  # the common case first: a report packs tens of thousands of numbers
+        if v - v != 0.0:  # inf or nan
+            return None
+        r = round(v, digits)
+        return 0.0 if r == 0 else r
     if v is None or isinstance(v, bool) or not isinstance(v, (int, float)):
         return None
     f = float(v)
@@ -209,15 +215,18 @@ def _ending(ending: Any) -> dict | None:
             "message": message[:300] if isinstance(message, str) else ""}
 
 
+@functools.lru_cache(maxsize=None)
 def _asset(name: str) -> str:
     return resources.files("simiam.viewer").joinpath(name).read_text(encoding="utf-8")
 
 
+@functools.lru_cache(maxsize=1)
 def _script() -> str:
     """The page's one script element's text, exactly (its hash is what the page's CSP allows to run)."""
     return "\n" + _asset("static/replay.js") + "\n"
 
 
+@functools.lru_cache(maxsize=1)
 def content_security_policy() -> str:
     """The replay page's Content-Security-Policy: its own inlined script may run and nothing else (no
     injected inline script or event handler, no fetch, no form, no plug-in). A page that embeds a replay
@@ -231,6 +240,12 @@ def _encodable(value: Any) -> Any:
     if isinstance(value, str) and not isinstance(value, Markup):
         return value.encode("utf-8", "backslashreplace").decode("utf-8")
     return value
+
+
+@functools.lru_cache(maxsize=1)
+def _template() -> jinja2.Template:
+    """The page's template, compiled once per process (a report embeds one replay per run)."""
+    return _env().from_string(_asset("templates/replay.html"))
 
 
 def _env() -> jinja2.Environment:
@@ -267,8 +282,7 @@ def render_replay(trace: dict, title: str | None = None, max_rows: int | None = 
         bits.append(f"1 step in {stride} shown")
     if meta.get("seed") is not None:
         bits.append(f"seed {meta['seed']}")
-    template = _env().from_string(_asset("templates/replay.html"))
-    return template.render(title=title, subtitle=" · ".join(b for b in bits if b),
+    return _template().render(title=title, subtitle=" · ".join(b for b in bits if b),
                            csp=content_security_policy(), css=Markup(_asset("static/replay.css")),
                            script=Markup(_script()), data=packed)
 

@@ -310,3 +310,22 @@ def test_a_scenario_result_carries_its_checks_plots() -> None:
     assert "plots" not in run_check(prop, ctx, {}).to_json()
     with pytest.raises(ValueError, match="unknown plots"):
         Check("week3.x.w", "x", "scenario", 1.0, lambda ctx: Outcome(1.0), plots=("radar",))
+
+
+def test_the_cached_template_environment_still_escapes_every_report(week3_result):
+    """The report's environment and the replay's template are built once per process (a batch renders
+    hundreds of reports): a second report with other hostile text is escaped as the first was, and the
+    environment is the same object (built once, not per report)."""
+    from grader.report import html as report_html
+    from simiam.viewer import replay
+
+    result, traces = week3_result
+    first = render_report(result, traces)
+    assert report_html._env() is report_html._env() and replay._template() is replay._template()
+    result = {**result, "submission": "<img src=x onerror=alert(1)>"}
+    traces = {k: {**t, "meta": {**(t.get("meta") or {}), "check_label": "</script><script>window.pwned=1"}}
+              for k, t in traces.items()}
+    second = render_report(result, traces)
+    assert student_markup_is_inert(first) and student_markup_is_inert(second)
+    assert "&lt;img src=x onerror=alert(1)&gt;" in second and "<img src=x" not in second
+    assert "</script><script>window.pwned=1" not in second
