@@ -72,12 +72,16 @@ def select_checks(week: int, hidden: bool, only: str | None = None) -> tuple[lis
 @functools.lru_cache(maxsize=1)
 def _skeletons_out_of_date() -> tuple[str, ...]:
     """In a checkout with solutions/: the packaged skeletons that differ from what the generator makes
-    now (an instructor edited solutions/ and did not regenerate). Empty where there are no solutions."""
+    now (an instructor edited solutions/ and did not regenerate). Empty where there are no solutions.
+    When the skeletons' stamp matches solutions/ (the usual case) nothing is regenerated: ~1 ms instead
+    of ~100 ms, once per grading process."""
+    from simiam.course import skeleton_stamp
+
+    if not (ROOT / "solutions").is_dir() or skeleton_stamp.up_to_date(ROOT / "solutions"):
+        return ()
     from simiam.course.stubs import SKELETONS, differences, generate
 
-    if not (ROOT / "solutions").is_dir():
-        return ()
-    prefix = str(SKELETONS.relative_to(SKELETONS.parents[2]))
+    prefix = str(SKELETONS.relative_to(SKELETONS.parents[2])) + "/week"  # the skeletons, not their stamp
     generated = generate(ROOT / "solutions")
     return tuple(d for d in differences(generated, SKELETONS.parents[2]) if d.startswith(prefix))
 

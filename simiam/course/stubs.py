@@ -6,7 +6,8 @@ as the course did: that is assignments/weekN, what students receive. simiam/cour
 same files with *every* block a placeholder (package data: the pristine skeletons the grader splices into;
 they ship in the wheel, so they hold no solution code of any week). The generator also writes
 `simiam/course/shipped_blocks.py`, the list of blocks each week ships with a fingerprint of each shipped
-body: `simiam migrate` reads it (students have no solutions).
+body: `simiam migrate` reads it (students have no solutions); and the skeletons' stamp
+(simiam/course/skeleton_stamp.py), with which the grader checks them against solutions/ cheaply.
 
     python -m simiam.course.stubs            # regenerate assignments/, the skeletons and shipped_blocks.py
     python -m simiam.course.stubs --check    # exit 1 if the committed files differ from what it generates
@@ -21,11 +22,11 @@ from pathlib import Path
 
 from simiam.course.blocks import BlockError, find_blocks, fingerprint, replace_bodies
 from simiam.course.placeholders import placeholder_for
+from simiam.course.skeleton_stamp import SKELETONS, STAMP, stamp_text
 from simiam.course.weeks import get_week, week_numbers
 
 ROOT = Path(__file__).resolve().parents[2]
 MANIFEST = Path(__file__).with_name("shipped_blocks.py")
-SKELETONS = Path(__file__).with_name("skeletons")
 ASSIGNMENTS = "assignments/week{week}"
 # Every folder the generator owns: stale .py files in them are reported (--check) and removed (write).
 STUB_FOLDERS = (ASSIGNMENTS, str(SKELETONS.relative_to(ROOT)) + "/week{week}")
@@ -91,6 +92,8 @@ def generate(solutions: Path = ROOT / "solutions") -> Generated:
     A BlockError names a declared week whose solutions folder lacks one of its student files."""
     files: dict[str, str] = {}
     manifest: dict[int, dict[str, list[dict]]] = {}
+    read: dict[str, bytes] = {}       # the stamp's inputs and outputs, as "weekN/file.py"
+    skeletons: dict[str, str] = {}
     for week in week_numbers():
         manifest[week] = {}
         folder = solutions / f"week{week}"
@@ -99,6 +102,7 @@ def generate(solutions: Path = ROOT / "solutions") -> Generated:
             raise BlockError(f"solutions/week{week}", None, f"week {week} declares {', '.join(missing)} "
                              f"(simiam/course/weeks/week{week}.py), which this folder does not have")
         for src in sorted(folder.glob("*.py")):
+            read[f"week{week}/{src.name}"] = src.read_bytes()
             solution = src.read_text(encoding="utf-8")
             try:
                 text, rows = stub_text(week, solution, src.name)
@@ -107,11 +111,13 @@ def generate(solutions: Path = ROOT / "solutions") -> Generated:
                     files[f"{pattern.format(week=week)}/{src.name}"] = (
                         stub_text(week, solution, src.name, every_block=True)[0] if every_block else text
                     )
+                skeletons[f"week{week}/{src.name}"] = files[f"{STUB_FOLDERS[1].format(week=week)}/{src.name}"]
             except BlockError as e:
                 raise BlockError(f"solutions/week{week}/{e.file}", e.line, e.message) from None
             if rows:
                 manifest[week][src.name] = rows
     files[str(MANIFEST.relative_to(ROOT))] = _manifest_source(manifest)
+    files[str(STAMP.relative_to(ROOT))] = stamp_text(read, skeletons)
     return Generated(files)
 
 

@@ -215,7 +215,7 @@ def _ending(ending: Any) -> dict | None:
             "message": message[:300] if isinstance(message, str) else ""}
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _asset(name: str) -> str:
     return resources.files("simiam.viewer").joinpath(name).read_text(encoding="utf-8")
 
