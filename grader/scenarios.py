@@ -143,7 +143,7 @@ def min_clearance(trace: Trace, world: World, spec, every: int = 3) -> float | N
         body = clearance.Shape(ref.placed((x, y, th), plate))
         for obstacle in obstacles:
             if clearance.box_gap(body.box, obstacle.box) < gap:  # else it cannot be the nearest
-                gap = min(gap, clearance.distance(body, obstacle))
+                gap = clearance.nearer(body, obstacle, gap)
     return gap
 
 

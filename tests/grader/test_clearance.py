@@ -61,3 +61,35 @@ def test_min_clearance_of_a_run_is_shapelys() -> None:
     theirs = min(Polygon(_plate_at(trace.steps["x"][k], trace.steps["y"][k], trace.steps["theta"][k]))
                  .distance(theirs_all) for k in rows)
     assert ours == pytest.approx(theirs, rel=1e-12, abs=1e-15)
+
+
+def _every_pair(a: clearance.Shape, b: clearance.Shape) -> float:
+    """The distance with nothing skipped: every edge pair crossed, every vertex against every edge."""
+    if any(clearance._crosses(e, f) for e in a.edges for f in b.edges):
+        return 0.0
+    if clearance._inside(a.points[0], b) or clearance._inside(b.points[0], a):
+        return 0.0
+    return min([clearance.point_to_segment(p, r, s) for p in a.points for r, s in b.edges]
+               + [clearance.point_to_segment(p, r, s) for p in b.points for r, s in a.edges])
+
+
+@pytest.mark.parametrize("world", ["week3", "week4", "final"])
+def test_skipping_pairs_never_changes_the_gap_by_a_bit(world: str) -> None:
+    """nearer() skips box-separated polygons' crossing tests and vertex-edge pairs whose box gap exceeds
+    the best so far: the result is min(bound, the full computation) exactly, for plates close to the
+    obstacles (where the skipping decides) and bounds just above, at and below the true gap."""
+    shapes = [clearance.Shape(p) for p in load_world(world).obstacles]
+    rng = random.Random(f"nearer-{world}")
+    skipped_some = 0
+    for _ in range(300):
+        obstacle = rng.choice(shapes)
+        x0, x1, y0, y1 = obstacle.box
+        body = clearance.Shape(_plate_at(rng.uniform(x0 - 0.15, x1 + 0.15), rng.uniform(y0 - 0.15, y1 + 0.15),
+                                         rng.uniform(-math.pi, math.pi)))
+        exact = _every_pair(body, obstacle)
+        assert clearance.distance(body, obstacle) == exact
+        for bound in (math.inf, exact, math.nextafter(exact, math.inf), exact * 1.01 + 1e-6,
+                      exact * 0.99, rng.uniform(0, 0.5)):
+            assert clearance.nearer(body, obstacle, bound) == min(bound, exact), (bound, exact)
+        skipped_some += exact > 0 and clearance.box_gap(body.box, obstacle.box) > 0
+    assert skipped_some > 10  # plates clear of the obstacle's box, whose crossing tests are skipped
