@@ -89,14 +89,19 @@ class Chart:
 
     def render(self) -> Markup:
         ml, mr, mt, mb = 46, 10, 22 if self.title else 8, 34
-        pts = [(x, y) for s in self.series for x, y in zip(s.xs, s.ys, strict=False)
-               if _finite(x) and _finite(y)]
-        pts += [(x, v) for xs, los, his, _ in self.bands for x, lo, hi in zip(xs, los, his, strict=False)
-                for v in (lo, hi) if _finite(x) and _finite(v)]
-        if not pts:
-            pts = [(0.0, 0.0), (1.0, 1.0)]
-        x0, x1 = min(p[0] for p in pts), max(p[0] for p in pts)
-        y0, y1 = min(p[1] for p in pts), max(p[1] for p in pts)
+        xs = [x for s in self.series for x, y in zip(s.xs, s.ys, strict=False) if _finite(x) and _finite(y)]
+        ys = [y for s in self.series for x, y in zip(s.xs, s.ys, strict=False) if _finite(x) and _finite(y)]
+        for bxs, los, his, _ in self.bands:
+            for x, lo, hi in zip(bxs, los, his, strict=False):
+                if _finite(x):
+                    for v in (lo, hi):
+                        if _finite(v):
+                            xs.append(x)
+                            ys.append(v)
+        if not xs:
+            xs, ys = [0.0, 1.0], [0.0, 1.0]
+        x0, x1 = min(xs), max(xs)
+        y0, y1 = min(ys), max(ys)
         if x1 - x0 < 1e-12:
             x0, x1 = x0 - 0.5, x1 + 0.5
         if y1 - y0 < 1e-12:
