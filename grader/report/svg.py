@@ -22,7 +22,10 @@ _LEGEND_STRIP = 20  # px under a top view for its legend
 
 def _n(v: float) -> str:
     """A coordinate with at most two decimals (pixels), without '-0'."""
-    s = f"{v:.2f}".rstrip("0").rstrip(".")
+    s = f"{v:.2f}"
+    if s[-1] != "0":  # most coordinates: nothing to strip (a plot formats thousands)
+        return s
+    s = s.rstrip("0").rstrip(".")
     return "0" if s in ("-0", "") else s
 
 

@@ -21,8 +21,8 @@ def _env(loader: jinja2.BaseLoader) -> jinja2.Environment:
 
 def _page(env: jinja2.Environment, result: dict, traces: dict) -> str:
     views = [report_html._check_view(c, traces, "inline", {}, set()) for c in result["checks"]]
-    return env.get_template("report.html.j2").render(summary=report_html._summary(result, views), checks=views,
-                                                     csp="default-src 'none'")
+    summary = report_html._summary(result, views)
+    return env.get_template("report.html.j2").render(summary=summary, checks=views, csp="default-src 'none'")
 
 
 def test_the_stored_modules_are_up_to_date(capsys):

@@ -329,3 +329,11 @@ def test_the_cached_template_environment_still_escapes_every_report(week3_result
     assert student_markup_is_inert(first) and student_markup_is_inert(second)
     assert "&lt;img src=x onerror=alert(1)&gt;" in second and "<img src=x" not in second
     assert "</script><script>window.pwned=1" not in second
+
+
+@pytest.mark.parametrize("value, text", [(1.0, "1"), (10.0, "10"), (2.5, "2.5"), (-2.5, "-2.5"),
+                                         (1.239, "1.24"), (3.14159, "3.14"), (0.0, "0"), (-0.0, "0"),
+                                         (-0.004, "0"), (0.004, "0"), (-0.01, "-0.01"), (120.10, "120.1"),
+                                         (7, "7")])
+def test_plot_coordinates_have_at_most_two_decimals_and_never_minus_zero(value, text):
+    assert svg._n(value) == text
