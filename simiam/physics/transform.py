@@ -10,14 +10,18 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from fractions import Fraction
 
 Pose = tuple[float, float, float]
 
 
 def _fma(a: float, b: float, c: float) -> float:
-    """a*b + c with a single rounding."""
-    return float(Fraction(a) * Fraction(b) + Fraction(c))
+    """a*b + c with a single rounding: the exact sum as one ratio of integers, then Python's correctly
+    rounded integer division (what float(Fraction(a) * Fraction(b) + Fraction(c)) computes, without
+    importing fractions and decimal into every process that loads a world)."""
+    an, ad = a.as_integer_ratio()
+    bn, bd = b.as_integer_ratio()
+    cn, cd = c.as_integer_ratio()
+    return (an * bn * cd + cn * ad * bd) / (ad * bd * cd)
 
 
 def transform_point(pose: Pose, px: float, py: float) -> tuple[float, float]:
