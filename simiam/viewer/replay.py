@@ -242,10 +242,20 @@ def _encodable(value: Any) -> Any:
     return value
 
 
+TEMPLATE = "templates/replay.html"
+# the page's template as Python, made by `python -m grader.report.precompiled` (simiam.viewer.precompiled)
+COMPILED = Path(__file__).with_name("compiled") / "replay_html.py"
+
+
 @functools.lru_cache(maxsize=1)
 def _template() -> jinja2.Template:
-    """The page's template, compiled once per process (a report embeds one replay per run)."""
-    return _env().from_string(_asset("templates/replay.html"))
+    """The page's template, loaded once per process (a report embeds one replay per run): precompiled
+    where the stored code matches the template, else compiled as `from_string` does."""
+    from simiam.viewer import precompiled
+
+    env = _env()
+    return precompiled.template(env, _asset(TEMPLATE), "simiam.viewer.compiled.replay_html",
+                                globals=env.make_globals(None))
 
 
 def _env() -> jinja2.Environment:

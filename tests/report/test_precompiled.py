@@ -76,3 +76,41 @@ def test_stored_code_for_another_jinja2_or_other_options_is_not_used(week3_resul
         env.trim_blocks = False
     _page(env, result, traces)
     assert compiled == ["report.html.j2", "report.css.j2"]
+
+
+def test_the_replay_page_uses_its_stored_code_and_renders_the_same(week3_result, monkeypatch):
+    from simiam.viewer import replay
+
+    _, traces = week3_result
+    trace = {**next(iter(traces.values())), "meta": {"check_label": "</script><script>window.pwned=1"}}
+    stored_template = replay._template
+    compiled_here = replay._env().from_string(replay._asset(replay.TEMPLATE))
+    monkeypatch.setattr(replay, "_template", lambda: compiled_here)
+    from_source = replay.render_replay(trace, title="</title><script>window.pwned=2</script>")
+    monkeypatch.setattr(replay, "_template", stored_template)
+
+    def no_compiling(*_args, **_kwargs):
+        raise AssertionError("compiled from source although the stored code is up to date")
+
+    monkeypatch.setattr(jinja2.Environment, "compile", no_compiling)
+    replay._template.cache_clear()
+    try:
+        page = replay.render_replay(trace, title="</title><script>window.pwned=2</script>")
+    finally:
+        replay._template.cache_clear()
+    assert page == from_source
+    assert "<script>window.pwned" not in page
+
+
+def test_an_edited_replay_template_is_compiled_from_its_text(week3_result, monkeypatch):
+    from simiam.viewer import replay
+
+    _, traces = week3_result
+    asset = replay._asset
+    edited = asset(replay.TEMPLATE).replace("<title>", "<title>Edited ")
+    monkeypatch.setattr(replay, "_asset", lambda name: edited if name == replay.TEMPLATE else asset(name))
+    replay._template.cache_clear()
+    try:
+        assert "<title>Edited " in replay.render_replay(next(iter(traces.values())))
+    finally:
+        replay._template.cache_clear()
