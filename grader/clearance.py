@@ -39,11 +39,14 @@ class Shape:
         """Per edge, what point_to_segment computes from it (the same floats), and its box."""
         if self._segments is None:
             out = []
+            sqrt = math.sqrt
             for a, b in self.edges:
-                dx, dy = b[0] - a[0], b[1] - a[1]
+                (ax, ay), (bx, by) = a, b
+                dx, dy = bx - ax, by - ay
                 len2 = dx * dx + dy * dy
-                out.append((a[0], a[1], b[0], b[1], dx, dy, len2, math.sqrt(len2), a == b,
-                            min(a[0], b[0]), max(a[0], b[0]), min(a[1], b[1]), max(a[1], b[1])))
+                # (min and max as the builtins pick: the first of equal values)
+                out.append((ax, ay, bx, by, dx, dy, len2, sqrt(len2), a == b, bx if bx < ax else ax,
+                            bx if bx > ax else ax, by if by < ay else ay, by if by > ay else ay))
             self._segments = out
         return self._segments
 
