@@ -220,13 +220,11 @@ def _asset(name: str) -> str:
     return resources.files("simiam.viewer").joinpath(name).read_text(encoding="utf-8")
 
 
-@functools.lru_cache(maxsize=1)
 def _script() -> str:
     """The page's one script element's text, exactly (its hash is what the page's CSP allows to run)."""
     return "\n" + _asset("static/replay.js") + "\n"
 
 
-@functools.lru_cache(maxsize=1)
 def content_security_policy() -> str:
     """The replay page's Content-Security-Policy: its own inlined script may run and nothing else (no
     injected inline script or event handler, no fetch, no form, no plug-in). A page that embeds a replay
