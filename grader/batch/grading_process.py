@@ -18,6 +18,7 @@ since a report thread is always joined before the process sends anything else.
 
 from __future__ import annotations
 
+import functools
 import importlib
 import json
 import os
@@ -93,7 +94,7 @@ def serve(fn: GradeFn, tasks: Connection, replies: Connection) -> None:
     task = _receive(tasks)
     while task is not None:
         if first_phase is None:
-            replies.send_bytes(call_to_reply(lambda t=task: fn(t)))
+            replies.send_bytes(call_to_reply(functools.partial(fn, task)))
             task = _receive(tasks)
             continue
         finish = _first(first_phase, task)

@@ -252,8 +252,8 @@ class _Run:
             stored = read_json(self.out / f"{self.stems[student.id]}.json") or {}
             timing = tm if isinstance(tm := stored.get("timing"), dict) else {}
             seconds = timing.get("batch_seconds")
-            if type(seconds) in (int, float) and math.isfinite(seconds):
-                last[student.id] = seconds
+            if isinstance(seconds, (int, float)) and not isinstance(seconds, bool) and math.isfinite(seconds):
+                last[student.id] = float(seconds)
         known = sorted(last.values())
         slow = 2 * known[len(known) // 2] + 5.0 if known else math.inf
         outliers = sorted((s for s in self.students if last.get(s.id, 0.0) > slow), key=lambda s: -last[s.id])
