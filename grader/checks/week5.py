@@ -14,6 +14,7 @@ import random
 from collections.abc import Callable
 
 from grader import earlier, scenarios
+from grader import reference as ref
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import fmt, vector
 from grader.domains import Floats, Integers, SampledFrom
@@ -226,14 +227,18 @@ def states(ctx: Context) -> Outcome:
 def seen_from(world: World, start: tuple[float, float, float], goal: tuple[float, float],
               label: str) -> tuple[World, tuple[float, float]]:
     """The world and the goal in the frame of the start pose: the robot starts at (0, 0, 0) there, where
-    the student's supervisor starts its estimate."""
+    the student's supervisor starts its estimate. The inverse of placing at `start`, through the
+    simulator's own transform (grader.reference.place): shift by -start, then turn by -theta. It gives
+    the very bits the former hand-written rotation gave on every hidden variant (tests/grader/
+    test_hidden_week5.py::test_seen_from_is_the_inverse_of_the_simulators_placement)."""
     xs, ys, ts = start
-    c, s = math.cos(-ts), math.sin(-ts)
+    back = (0.0, 0.0, -ts)
 
-    def move(x: float, y: float) -> tuple[float, float]:
-        return c * (x - xs) - s * (y - ys), s * (x - xs) + c * (y - ys)
+    def shifted(points) -> list[tuple[float, float]]:
+        return [(x - xs, y - ys) for x, y in points]
 
-    return World(label, [[move(x, y) for x, y in poly] for poly in world.obstacles]), move(*goal)
+    obstacles = [ref.placed(back, shifted(poly)) for poly in world.obstacles]
+    return World(label, obstacles), ref.place(back, (goal[0] - xs, goal[1] - ys))
 
 
 def switches(run: scenarios.Run, first: str) -> int:

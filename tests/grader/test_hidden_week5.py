@@ -71,3 +71,31 @@ def test_the_hidden_runs_catch_a_wrong_version(tmp_path, mistake, check_id) -> N
     (check,) = result["checks"]
     assert check["status"] == "failed" and check["points"] < check["max_points"], check["message"]
     assert "collided" in check["message"]
+
+
+def _former_seen_from(start, point):
+    """The rotation week5.seen_from was written as when the hidden variants were validated (frozen here):
+    the runs are only known fair for these very bits."""
+    xs, ys, ts = start
+    c, s = math.cos(-ts), math.sin(-ts)
+    x, y = point
+    return c * (x - xs) - s * (y - ys), s * (x - xs) + c * (y - ys)
+
+
+def test_seen_from_is_the_inverse_of_the_simulators_placement() -> None:
+    """The world seen from each hidden start, put back at the start by the simulator's own transform, is
+    the week-5 world; and it is, bit for bit (signed zeros too), the world the variants were validated in."""
+    from grader import reference as ref
+    from grader.checks.week5 import seen_from
+    from simiam.world import load_world
+
+    world = load_world("week5")
+    for v in load_hidden(5)["variants"]:
+        start, goal = tuple(v["start"]), tuple(v["goal"])
+        seen, goal_seen = seen_from(world, start, goal, "seen")
+        for here, there in zip(seen.obstacles, world.obstacles, strict=True):
+            back = ref.placed(start, here)
+            assert max(math.dist(p, q) for p, q in zip(back, there, strict=True)) < 1e-12
+            former = [_former_seen_from(start, p) for p in there]
+            assert [tuple(map(float.hex, p)) for p in here] == [tuple(map(float.hex, p)) for p in former]
+        assert tuple(map(float.hex, goal_seen)) == tuple(map(float.hex, _former_seen_from(start, goal)))
