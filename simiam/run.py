@@ -23,6 +23,7 @@ from simiam.course.folders import WeekFolderNotFound, week_folder
 from simiam.course.loader import load_submission, locate_in_folder
 from simiam.course.week import Week
 from simiam.course.weeks import get_week
+from simiam.laps import count_laps
 from simiam.run_limit import LimitedBrain, StepTimeout, step_limit, stuck_at
 from simiam.signals import week_signals
 from simiam.simulator import Simulator
@@ -223,7 +224,8 @@ def _write_replay(trace_json: dict, path: Path) -> Path | None:
 
 def summary(week: Week, folder: Path, trace: Trace, sup: Supervisor) -> str:
     """One paragraph: final pose, estimate, collision, then the goal (a run with one), the heading
-    (a week whose `summary` names it) or the distance driven."""
+    (a week whose `summary` names it) or the distance driven; then, for a week that declares a lap gate,
+    the laps through it (counted as `grade` counts them, in whichever direction the robot went round)."""
     s = trace.steps
     n = len(trace) - 1
     x, y, theta = s["x"][-1], s["y"][-1], s["theta"][-1]
@@ -253,4 +255,6 @@ def summary(week: Week, folder: Path, trace: Trace, sup: Supervisor) -> str:
     else:
         path = sum(math.hypot(s["x"][k + 1] - s["x"][k], s["y"][k + 1] - s["y"][k]) for k in range(n))
         parts.append(f"Distance driven: {path:.2f} m.")
+    if week.lap_gate is not None:
+        parts.append(count_laps(s["x"], s["y"], s["t"], week.lap_gate).words())
     return " ".join(parts)

@@ -18,11 +18,14 @@ import math
 import random
 from typing import Any
 
-from grader import earlier, laps, scenarios
+from grader import earlier, scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import describe, fmt, number
 from grader.domains import Floats, Lists, SampledFrom
+from grader.laps import median_distance
 from grader.properties import run_property
+from simiam.course.weeks import get_week
+from simiam.laps import Gate, laps
 from simiam.world import load_world
 
 FW = ("follow_wall.py",)
@@ -42,10 +45,6 @@ SECONDS = 90.0  # the original test's length
 LAPS = 2  # the original test: back at the start twice and off again
 SETTLE = 10.0  # s: the distance to the wall is judged after the robot found the wall
 DISTANCE_TOL = 0.05  # m: the median distance to the obstacle may differ this much from d_fw
-# The gate: from the L's lower block (y = 0.2) straight down to the bottom wall (y = -1.4), through the
-# start (0, 0). Following the wall on the left the robot drives around the L anticlockwise, so it crosses
-# the gate toward +x; on the right clockwise, toward -x.
-GATE_X, GATE_Y = 0.0, (-1.4, 0.2)
 IR_RANGE = (0.04, 0.3)
 LAP_HINT = (
     "Hint: the checks of p_1/p_2, u_fw_tp, u_fw_p, u_fw_pp and u_fw say which part is wrong; if they all "
@@ -60,9 +59,12 @@ _d_fw = Floats(0.1, 0.25)
 LEFT, RIGHT = (0, 1, 2), (4, 3, 2)
 
 
-def gate(direction: str) -> laps.Gate:
-    """The lap gate, crossed toward +x when following the wall on the left, toward -x on the right."""
-    return laps.Gate(GATE_X, GATE_Y[0], GATE_Y[1], -1 if direction == "right" else 1)
+def gate(direction: str) -> Gate:
+    """The week's lap gate (`WEEK.lap_gate`, crossed toward +x when following the wall on the left), the
+    other way round on the right."""
+    declared = get_week(6).lap_gate
+    assert declared is not None, "week 6 declares its lap gate (simiam/course/weeks/week6.py)"
+    return declared.reversed() if direction == "right" else declared
 
 
 def _choice_problem(distances: list[float], direction: str, got: list[int]) -> str | None:
@@ -397,10 +399,10 @@ def judge_laps(
 ) -> tuple[bool, str, dict]:
     """Two laps through the gate, no collision, and the median distance to `obstacle` (its polygons) after
     the first SETTLE seconds within DISTANCE_TOL of d_fw: (passed, why, figures)."""
-    counted = laps.laps(xs, ys, gate(direction))
+    counted = laps(xs, ys, gate(direction))
     done = max(counted)
     first = int(round(SETTLE / dt))
-    median = laps.median_distance(xs[first:], ys[first:], obstacle) if len(xs) > first else None
+    median = median_distance(xs[first:], ys[first:], obstacle) if len(xs) > first else None
     t = ts[counted.index(LAPS)] if done >= LAPS else None
     figures = {"laps": done, "d_fw": d_fw, "median_distance": median, "t_laps": t}
     if collision is not None:

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 from simiam.course.placeholders import Placeholder
+from simiam.laps import Gate
 from simiam.robot.quickbot import RobotSpec
 from simiam.signals import declared
 
@@ -78,6 +79,9 @@ class Week:
     - `debug_signals`: the names of the debug values the week's trace carries (u_ao, theta_g, ...), each
       declared in simiam/signals.py (its kind and where the brain reads it).
     - `summary`: the lines `simiam run` prints after the run, by name ("heading", "goal", "path", ...).
+    - `lap_gate`: for a week whose runs drive laps around an obstacle, the gate a lap crosses
+      (simiam.laps.Gate, in the running direction of the week's own run); `simiam run` then prints the
+      laps, and the week's checks count them through it. None: no laps.
     """
 
     number: int
@@ -94,6 +98,7 @@ class Week:
     start: tuple[float, float, float] = (0.0, 0.0, 0.0)
     debug_signals: tuple[str, ...] = ()
     summary: tuple[str, ...] = ("path",)
+    lap_gate: Gate | None = None
 
     def __post_init__(self) -> None:
         where = f"week {self.number}"
@@ -109,6 +114,8 @@ class Week:
         lines = sorted(set(self.summary) - set(SUMMARY_LINES))
         if lines:
             raise ValueError(f"{where}: unknown summary lines {lines} (known: {', '.join(SUMMARY_LINES)})")
+        if self.lap_gate is not None and not isinstance(self.lap_gate, Gate):
+            raise ValueError(f"{where}: lap_gate must be a simiam.laps.Gate or None, got {self.lap_gate!r}")
         unknown = sorted(set(self.required_names) - set(self.student_files))
         if unknown:
             raise ValueError(f"{where}: required_names of files that are not student files: {unknown}")

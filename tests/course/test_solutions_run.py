@@ -5,11 +5,16 @@ from __future__ import annotations
 
 import argparse
 import json
+import shutil
+from dataclasses import replace
 from pathlib import Path
 
 import mistakes
 import pytest
 
+from simiam import run
+from simiam.course.weeks import get_week
+from simiam.laps import Gate
 from simiam.run import main
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -28,10 +33,47 @@ def test_solutions_run_writes_trace_replay_and_summary(tmp_path, capsys):
     assert main(_args("week3", tmp_path, solutions=True)) == 0
     out = capsys.readouterr().out
     assert "Goal (-1, 1) reached" in out and "No collision" in out
+    assert "Laps" not in out  # week 3 declares no lap gate
     trace = json.loads((tmp_path / "week3.json").read_text())
     assert trace["format"] == "simiam-trace/1" and trace["goal"] == [-1.0, 1.0]
     assert trace["steps"]["state"][-1] == "stop"
     assert (tmp_path / "week3.csv").is_file() and (tmp_path / "week3.html").is_file()
+
+
+def test_week6_prints_the_laps_through_its_gate(tmp_path, capsys):
+    """Week 6 declares a lap gate: the summary counts the laps through it as grade does (the solution
+    follows the wall on the left, round the L anticlockwise)."""
+    assert main(_args("week6", tmp_path, solutions=True, dt=0.05)) == 0
+    out = capsys.readouterr().out
+    assert ("Laps: 3 through the gate (x = 0 from y = -1.4 to 0.2, crossed toward +x), the first completed "
+            "at t = ") in out
+
+
+def test_a_run_round_the_other_way_counts_its_laps_too(tmp_path, capsys):
+    """The student picks the side in their __init__: on the right the robot goes round clockwise."""
+    folder = tmp_path / "week6"
+    shutil.copytree(ROOT / "solutions/week6", folder)
+    supervisor = folder / "qb_supervisor.py"
+    text = supervisor.read_text()
+    assert 'self.fw_direction = "left"' in text
+    supervisor.write_text(text.replace('self.fw_direction = "left"', 'self.fw_direction = "right"'))
+    assert main(_args("week6", tmp_path / "out", path=str(folder), dt=0.05)) == 0
+    out = capsys.readouterr().out
+    assert "Laps: 3 through the gate (x = 0 from y = -1.4 to 0.2, crossed toward -x)" in out
+
+
+def test_the_laps_line_follows_the_weeks_declaration(tmp_path, capsys, monkeypatch):
+    """The line is there because a week declares a gate, not because it is week 6: week 3 given a gate
+    on its way to the goal prints one lap; week 6 without one prints none."""
+    week3, week6 = get_week(3), get_week(6)
+    gated = {3: replace(week3, lap_gate=Gate(x=-0.5, y_low=-1.0, y_high=1.0, sign=-1)),
+             6: replace(week6, lap_gate=None)}
+    monkeypatch.setattr(run, "get_week", lambda week: gated[int(str(week).removeprefix("week"))])
+    assert main(_args("week3", tmp_path, solutions=True)) == 0
+    out = capsys.readouterr().out
+    assert "Laps: 1 through the gate (x = -0.5 from y = -1 to 1, crossed toward -x), completed at t = " in out
+    assert main(_args("week6", tmp_path, solutions=True, seconds=2.0, dt=0.05)) == 0
+    assert "Laps" not in capsys.readouterr().out
 
 
 def test_week5_blending_reports_its_goal(tmp_path, capsys):

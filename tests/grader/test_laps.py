@@ -1,13 +1,18 @@
-"""Laps at a gate (grader/laps.py): a full turn around the obstacle counts once, in the running direction
-only; wobbling on the gate, starting on it, or passing beside it counts nothing. The original's disc counter
-(kept below as the wrong version) counts a wobble at the start as laps."""
+"""Laps at a gate (simiam/laps.py, which `simiam run` and the week-6 checks share): a full turn around the
+obstacle counts once, in the running direction only; wobbling on the gate, starting on it, or passing beside
+it counts nothing. The original's disc counter (kept below as the wrong version) counts a wobble at the
+start as laps. And the grader's other lap figure, the distance kept from the obstacle (grader/laps.py)."""
 
 from __future__ import annotations
 
 import math
 
+import pytest
+
 from grader.checks.week6 import gate
-from grader.laps import Gate, distance_to, laps, median_distance
+from grader.laps import distance_to, median_distance
+from simiam.course.weeks import get_week
+from simiam.laps import Gate, count_laps, laps
 
 SQUARE = [[(-0.2, 0.2), (0.4, 0.2), (0.4, 0.4), (-0.2, 0.4)]]
 
@@ -77,3 +82,41 @@ def test_distance_to_the_obstacle():
     assert distance_to((0.1, 0.0), SQUARE) == 0.2
     assert distance_to((0.6, 0.3), SQUARE) == 0.19999999999999996
     assert median_distance([0.1, 0.1, 0.1], [0.0, -0.1, -0.2], SQUARE, every=1) == 0.30000000000000004
+
+
+def test_the_checks_gate_is_the_one_week_6_declares():
+    declared = get_week(6).lap_gate
+    assert gate("left") == declared
+    assert gate("right") == Gate(declared.x, declared.y_low, declared.y_high, -declared.sign)
+
+
+def test_count_laps_follows_the_robot_round_either_way():
+    """A student's own run may follow the wall on either side: the count takes the direction it went."""
+    ts = [0.1 * k for k in range(401)]
+    xs, ys = circle(2.2)
+    counted = count_laps(xs, ys, ts, gate("left"))
+    assert (counted.done, counted.gate.sign) == (2, 1)
+    assert counted.times == (ts[laps(xs, ys, gate("left")).index(1)], ts[laps(xs, ys, gate("left")).index(2)])
+    xs, ys = circle(2.2, sign=-1)
+    counted = count_laps(xs, ys, ts, gate("left"))
+    assert (counted.done, counted.gate.sign) == (2, -1)
+    words = counted.words()
+    assert words.startswith("Laps: 2 through the gate (x = 0 from y = -1.4 to 0.2, crossed toward -x)")
+
+
+def test_no_lap_is_no_lap_either_way():
+    xs = [0.0] + [0.05, 0.12] * 6
+    counted = count_laps(xs, [0.0] * len(xs), [float(k) for k in range(len(xs))], gate("left"))
+    assert counted.done == 0 and counted.times == ()
+    assert counted.words() == "Laps: 0 through the gate (x = 0 from y = -1.4 to 0.2, crossed toward +x)."
+
+
+@pytest.mark.parametrize(("args", "words"), [
+    ((0.0, 0.2, -1.4, 1), "y_low must be below y_high"),
+    ((float("nan"), -1.4, 0.2, 1), "finite numbers"),
+    ((0.0, -1.4, 0.2, 2), r"sign must be \+1"),
+    ((0.0, -1.4, 0.2, True), r"sign must be \+1"),
+])
+def test_a_gate_that_is_no_segment_is_refused(args, words):
+    with pytest.raises(ValueError, match=words):
+        Gate(*args)

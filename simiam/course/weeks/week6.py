@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from simiam.course.placeholders import Placeholder
 from simiam.course.week import SupervisorSettings, Week
+from simiam.laps import Gate
 from simiam.robot.quickbot import MAX_VEL_130RPM, MIN_VEL_30RPM, RobotSpec
 
 # The blocks new this week: what the stub holds instead of the solution's body.
@@ -72,4 +73,8 @@ WEEK = Week(
     debug_signals=("v", "w", "theta_g", "ir_points_wf", "u_fw", "u_fw_t", "u_fw_p", "u_fw_pp",
                    "fw_direction"),
     summary=("path",),
+    # from the L's lower block (y = 0.2) straight down to the bottom wall (y = -1.4), through the start
+    # (0, 0): following the wall on the left (the run above) the robot goes round the L anticlockwise and
+    # crosses it toward +x; on the right clockwise, the other way (the checks' gate("right"))
+    lap_gate=Gate(x=0.0, y_low=-1.4, y_high=0.2, sign=1),
 )
