@@ -101,11 +101,14 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
     for note in result.get("notices") or []:
         p.wrapped(f"note: {note}", "  ")
     if not result.get("hidden"):
+        from simiam.course.weeks import hidden_variants
+
         n = result.get("hidden_checks_not_run", 0)
         ran = result.get("visible_checks", len(checks))
+        vary = hidden_variants(result.get("week"))  # what the week's hidden checks vary
         p.wrapped(f"{_count(ran, 'visible check')} ran here"
-                  + (f"; {_count(n, 'hidden check')} (other goals, other worlds, drawn per seed) run at "
-                     "official grading" if n else ""), "  ")
+                  + (f"; {_count(n, 'hidden check')} ({vary}, drawn per seed) run at official grading"
+                     if n else ""), "  ")
     lost = [c for c in checks if c.get("status") != "passed"]
     if lost:  # the end of the output is what a student sees first: what to fix, in the table's order
         p.line(f"  not passed ({len(lost)} of {len(checks)}):")

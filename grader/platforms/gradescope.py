@@ -42,6 +42,7 @@ from grader.platforms.official import (
     read_config,
     read_secret,
 )
+from simiam.course.weeks import hidden_variants
 
 TEMPLATES = Path(__file__).with_name("templates")
 MESSAGE_CHARS = 4000        # per test output; Gradescope shows it collapsed, students read the start
@@ -94,8 +95,8 @@ def summary_html(result: dict, config: dict) -> str:
     hidden = config.get("hidden_checks", 0)
     if hidden:
         when = _WHEN.get(str(config.get("hidden_visibility")), "later")
-        lines.append(f"{hidden} of the checks are hidden (other goals, start poses or worlds); "
-                     f"you see their results {when}.")
+        vary = hidden_variants(config.get("week"))  # what this week's hidden checks vary
+        lines.append(f"{hidden} of the checks are hidden ({esc(vary)}); you see their results {when}.")
     for note in (result.get("notices") or [])[:20]:
         lines.append("Note: " + esc(cap(note, 500)))
     isolation = result.get("isolation")

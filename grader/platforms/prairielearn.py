@@ -45,6 +45,7 @@ from grader.platforms.official import (
     read_config,
     read_secret,
 )
+from simiam.course.weeks import hidden_variants
 
 TEMPLATES = Path(__file__).with_name("templates")
 MAX_RESULTS_BYTES = 1_000_000          # PrairieLearn's documented limit on results.json
@@ -93,7 +94,8 @@ def build(week: int, out: Path, course: Path, seed: int, image: str | None = Non
         env = jinja2.Environment(loader=jinja2.FileSystemLoader(TEMPLATES), autoescape=True,
                                  keep_trailing_newline=True)
         page = env.get_template("prairielearn_question.html.j2").render(
-            week=week, title=_title(readme), files=editable, hidden=config["hidden_checks"] > 0)
+            week=week, title=_title(readme), files=editable, hidden=config["hidden_checks"] > 0,
+            hidden_variants=hidden_variants(week))
         (question / "question.html").write_text(page, encoding="utf-8")
         out.mkdir(parents=True, exist_ok=True)
         for part in ("question", "serverFilesCourse", "image"):

@@ -28,6 +28,7 @@ from markupsafe import Markup
 from grader.report import svg
 from grader.report.signal_plots import declared_plots
 from grader.untrusted import printable
+from simiam.course.weeks import hidden_variants
 
 # Metrics the scenario checks report, in the order shown, with how to print them.
 METRICS: dict[str, tuple[str, str]] = {
@@ -265,17 +266,17 @@ def _summary(result: dict, checks: list[dict]) -> dict:
     if isinstance(isolation, dict):
         isolation = isolation.get("mode") or json.dumps(isolation)
     counts = {s: sum(1 for c in checks if c["status"] == s) for s in STATUS_WORDS}
+    vary = hidden_variants(result.get("week"))  # what the week's hidden checks vary, in its own words
     if hidden:
-        note = ("Official grading: the hidden variants (other goals, other worlds, drawn per seed) "
-                "were run too.")
+        note = f"Official grading: the hidden variants ({vary}, drawn per seed) were run too."
     else:
         note = ("These are the visible checks. Official grading also runs hidden variants "
-                "(other goals, other worlds, drawn per seed).")
+                f"({vary}, drawn per seed).")
     not_run = result.get("hidden_checks_not_run")
     if not hidden and isinstance(not_run, int) and not_run > 0:
         note = (f"{len(checks)} visible check{'s' if len(checks) != 1 else ''} ran here; "
                 f"{not_run} hidden check{'s' if not_run != 1 else ''} "
-                "(other goals, other worlds, drawn per seed) run at official grading.")
+                f"({vary}, drawn per seed) run at official grading.")
     problems = p if isinstance(p := result.get("problems"), dict) else {}
     notices = n if isinstance(n := result.get("notices"), list) else []
     return {"week": result.get("week"), "score": result.get("score"), "max_score": result.get("max_score"),

@@ -82,6 +82,10 @@ class Week:
     - `lap_gate`: for a week whose runs drive laps around an obstacle, the gate a lap crosses
       (simiam.laps.Gate, in the running direction of the week's own run); `simiam run` then prints the
       laps, and the week's checks count them through it. None: no laps.
+    - `hidden_variants`: in a few words, what the week's hidden checks vary ("other goals", "the other
+      side, other start headings and distances d_fw"): `grade`'s terminal output and report say it where
+      hidden checks are counted ("2 hidden checks (other goals, drawn per seed) run at official grading").
+      Empty for a week without hidden checks.
     """
 
     number: int
@@ -99,6 +103,7 @@ class Week:
     debug_signals: tuple[str, ...] = ()
     summary: tuple[str, ...] = ("path",)
     lap_gate: Gate | None = None
+    hidden_variants: str = ""
 
     def __post_init__(self) -> None:
         where = f"week {self.number}"
@@ -116,6 +121,10 @@ class Week:
             raise ValueError(f"{where}: unknown summary lines {lines} (known: {', '.join(SUMMARY_LINES)})")
         if self.lap_gate is not None and not isinstance(self.lap_gate, Gate):
             raise ValueError(f"{where}: lap_gate must be a simiam.laps.Gate or None, got {self.lap_gate!r}")
+        words = self.hidden_variants
+        if not isinstance(words, str) or words != " ".join(words.split()) or words.endswith((".", ",")):
+            raise ValueError(f"{where}: hidden_variants must be a few words on one line, without a final "
+                             f"stop (they go inside brackets), got {words!r}")
         unknown = sorted(set(self.required_names) - set(self.student_files))
         if unknown:
             raise ValueError(f"{where}: required_names of files that are not student files: {unknown}")

@@ -89,6 +89,10 @@ def _week(**changes) -> Week:
     ({"summary": ("path", "laps")}, "unknown summary lines"),
     ({"debug_signals": ("u_ao", "u ao")}, "be distinct identifiers"),
     ({"debug_signals": ("v", "v")}, "be distinct identifiers"),
+    ({"lap_gate": (0.0, -1.4, 0.2, 1)}, "lap_gate must be a simiam.laps.Gate"),
+    ({"hidden_variants": "other goals."}, "without a final stop"),
+    ({"hidden_variants": "other goals\nand worlds"}, "on one line"),
+    ({"hidden_variants": 3}, "hidden_variants must be"),
 ])
 def test_an_inconsistent_week_is_refused(changes, match) -> None:
     assert _week().blocks[0].week == 9
@@ -200,3 +204,15 @@ def test_a_declared_week_reaches_the_command_lines(extra_weeks: Path, tmp_path: 
     moved.target = str(tmp_path / "assignments" / "week9")
     assert migrate.main(moved) == migrate.EXIT_OK
     assert "simiam migrate week9" in capsys.readouterr().out
+
+
+def test_a_week_with_hidden_checks_says_what_they_vary() -> None:
+    """The line counting hidden checks shows the week's own words (Week.hidden_variants): every week
+    that has hidden checks declares them; a week without any says nothing."""
+    from grader.checks import checks_for_week
+
+    for week in all_weeks():
+        hidden = [c.id for c in checks_for_week(week.number) if c.visibility == "hidden"]
+        assert bool(week.hidden_variants) == bool(hidden), (week.name, hidden, week.hidden_variants)
+    assert weeks.hidden_variants("week5") == "other start poses and goals, blending and switching"
+    assert weeks.hidden_variants(99) == weeks.HIDDEN_VARIANTS_UNSAID

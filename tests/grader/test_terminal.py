@@ -172,3 +172,17 @@ def test_a_reason_shared_by_many_checks_is_printed_once() -> None:
     print_result(result, out)
     text = flat(out.getvalue())  # however wide the terminal of the run (xdist workers have none)
     assert text.count(flat(why)) == 1 and flat("(the same reason as above)") in text
+
+
+def test_the_hidden_checks_line_says_what_the_weeks_variants_vary() -> None:
+    """Each week declares what its hidden checks vary (Week.hidden_variants); the line counting them says
+    it, and a result of a week not declared here falls back on the generic words."""
+    def line(week: object) -> str:
+        out = io.StringIO()
+        print_result({**hostile_result(), "week": week}, out)
+        return flat(out.getvalue())
+
+    assert flat("2 hidden checks (other goals, drawn per seed) run at official grading") in line(3)
+    assert flat("2 hidden checks (either side, other start headings and distances d_fw, drawn per seed) run "
+                "at official grading") in line(6)
+    assert flat("2 hidden checks (other goals, other worlds, drawn per seed)") in line(99)

@@ -73,7 +73,7 @@ def test_a_correct_zipped_week_folder_gets_full_marks(autograder, tmp_path):
     hidden = [t for t in results["tests"] if t["visibility"] != "visible"]
     assert len(hidden) == 2 and {t["visibility"] for t in hidden} == {"after_published"}
     assert "Isolation (bwrap)" in results["output"] and "graded: 12.5 / 12.5" in log
-    assert "2 of the checks are hidden (other goals, start poses or worlds); you see their results once " \
+    assert "2 of the checks are hidden (other goals); you see their results once " \
            "grades are published" in results["output"]
     # the installed wheel grades with the very check set (and hidden set) the bundle was built with
     assert "warning" not in results["extra_data"] and results["extra_data"]["status"] == "graded"

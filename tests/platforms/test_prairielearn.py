@@ -103,6 +103,7 @@ def test_the_page_has_a_file_editor_with_the_handout_for_each_file_with_blocks(p
     for name, source in editors:
         assert (pl.question / source).read_text() == handout[name]
     assert "<pl-external-grader-results>" in page
+    assert "Some checks are hidden (other goals): make your code" in page  # week 3's own words
     starter = {p.name: p.read_text() for p in (pl.question / "starter").glob("*.py")}
     assert leaks(3, starter, ROOT) == []
 

@@ -201,7 +201,7 @@ def test_file_problems_notices_and_printed_output(week3_result):
     assert "<li>go_to_goal.py:12: &lt;b&gt;invalid syntax&lt;/b&gt;</li>" in html
     assert "<li>quickbot.py: get_ir_distances is missing</li>" in html
     assert "changed outside the code blocks" in html and "bubblewrap sandbox" in html
-    assert "4 visible checks ran here; 2 hidden checks" in html
+    assert "4 visible checks ran here; 2 hidden checks (other goals, drawn per seed) run at official" in html
     assert "hello from the student &lt;script&gt;" in html and "<script>window.pwned = 3" not in html
 
 

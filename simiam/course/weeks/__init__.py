@@ -16,6 +16,8 @@ from simiam.course.placeholders import Placeholder
 from simiam.course.week import Week
 
 _WEEK_MODULE = re.compile(r"week([1-9][0-9]*)")
+# What hidden checks vary, in words, for a week that does not say (or a result of a week not declared here)
+HIDDEN_VARIANTS_UNSAID = "other goals, other worlds"
 
 
 @functools.cache
@@ -63,6 +65,16 @@ def get_week(week: int | str) -> Week:
     return weeks[int(text)]
 
 
+def hidden_variants(week: object) -> str:
+    """In a few words, what the hidden checks of `week` (3, "3", "week3": e.g. a result's "week") vary:
+    the week's own `hidden_variants`, or the generic words for a week that is not declared or says
+    nothing. For the lines that count hidden checks (grade's terminal output, the report, the platforms)."""
+    try:
+        return get_week(week).hidden_variants or HIDDEN_VARIANTS_UNSAID  # type: ignore[arg-type]
+    except ValueError:
+        return HIDDEN_VARIANTS_UNSAID
+
+
 def previous_week(week: int) -> int:
     """The declared week before `week` (the one `simiam migrate` carries blocks from); ValueError for the
     first week or an undeclared one."""
@@ -78,4 +90,5 @@ def all_blocks() -> tuple[Placeholder, ...]:
     return tuple(block for week in all_weeks() for block in week.blocks)
 
 
-__all__ = ["Week", "all_blocks", "all_weeks", "get_week", "previous_week", "refresh", "week_numbers"]
+__all__ = ["HIDDEN_VARIANTS_UNSAID", "Week", "all_blocks", "all_weeks", "get_week", "hidden_variants",
+           "previous_week", "refresh", "week_numbers"]

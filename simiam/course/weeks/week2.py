@@ -59,5 +59,6 @@ WEEK = Week(
     settings=SupervisorSettings(theta_d=math.pi / 4, v=0.1),
     seconds=8.0,
     debug_signals=WEEKS_1_TO_4,  # all five, as every trace of weeks 1-4 has carried them
+    hidden_variants="other angles theta_d",
     summary=("heading",),
 )

@@ -76,5 +76,6 @@ WEEK = Week(
     settings=SupervisorSettings(v=0.2, goal=(-1.0, 1.0), d_stop=0.05),
     seconds=30.0,
     debug_signals=WEEKS_1_TO_4,  # all five, as every trace of weeks 1-4 has carried them
+    hidden_variants="other goals",
     summary=("goal",),
 )

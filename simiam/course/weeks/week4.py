@@ -77,5 +77,6 @@ WEEK = Week(
     settings=SupervisorSettings(v=0.15, state="avoid_obstacles"),
     seconds=60.0,
     debug_signals=WEEKS_1_TO_4,  # all five, as every trace of weeks 1-4 has carried them
+    hidden_variants="the week-4 world mirrored and turned about the start",
     summary=("goal",),
 )

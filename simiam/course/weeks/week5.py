@@ -46,5 +46,6 @@ WEEK = Week(
     seconds=60.0,
     debug_signals=("v", "w", "theta_g", "u_ao", "ir_points_wf", "u_gtg", "u_ao_gtg", "switches", "at_goal",
                    "at_obstacle", "unsafe", "obstacle_cleared"),
+    hidden_variants="other start poses and goals, blending and switching",
     summary=("goal",),
 )

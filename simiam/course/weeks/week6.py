@@ -72,6 +72,7 @@ WEEK = Week(
     dt=0.05,
     debug_signals=("v", "w", "theta_g", "ir_points_wf", "u_fw", "u_fw_t", "u_fw_p", "u_fw_pp",
                    "fw_direction"),
+    hidden_variants="either side, other start headings and distances d_fw",
     summary=("path",),
     # from the L's lower block (y = 0.2) straight down to the bottom wall (y = -1.4), through the start
     # (0, 0): following the wall on the left (the run above) the robot goes round the L anticlockwise and
