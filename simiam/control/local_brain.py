@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 from simiam.control.pose import Pose2D
 from simiam.control.robot_view import RobotView
+from simiam.course.week import EXTRA_SETTINGS, NAMED_SETTINGS, check_setting_names, unknown_setting
 from simiam.signals import declared, read_signals, week_signals
 from simiam.signals import plain as _plain
 
@@ -31,6 +32,8 @@ class LocalBrain:
     `{"gains": {"go_to_goal": {"Kp": 4, "Ki": 0.01, "Kd": 0.01}}}` (a top-level
     `{"go_to_goal": {...}}` is accepted too). `start` is where the estimate starts (default: the week's);
     the setting `estimate` (x, y, theta) moves it there too, as the original's week-6 tests set it.
+    A setting of another name (or a gain the controller does not have) is refused with a ValueError that
+    names it and the known names, closest first: a misspelt one would be set and never read.
     The debug values are the week's declared signals (`week.debug_signals`, else weeks 1-4's), read from
     the supervisor and its current controller by simiam.signals.read_signals.
     """
@@ -49,6 +52,8 @@ class LocalBrain:
     def apply_settings(self, settings: dict) -> None:
         """Override the supervisor's settings and controller gains (see the class docstring)."""
         sup = self.supervisor
+        check_setting_names(settings, NAMED_SETTINGS + EXTRA_SETTINGS + tuple(sup.controllers),
+                            "the settings of this run")
         for key, value in settings.items():
             if key not in _NOT_ATTRIBUTES and key not in sup.controllers:
                 setattr(sup, key, tuple(value) if key == "goal" else value)
@@ -58,8 +63,13 @@ class LocalBrain:
             if name not in sup.controllers:
                 have = ", ".join(sup.controllers)
                 raise ValueError(f"no controller {name!r} to set gains on (have: {have})")
+            controller = sup.controllers[name]
             for gain, value in values.items():
-                setattr(sup.controllers[name], gain, value)
+                if not isinstance(gain, str) or not hasattr(controller, gain):
+                    numbers = [k for k, v in vars(controller).items()
+                               if isinstance(v, (int, float)) and not isinstance(v, bool)]
+                    raise unknown_setting(gain, numbers, f"the gains of {name}", kind="gain")
+                setattr(controller, gain, value)
         if settings.get("state"):
             sup.switch_to_state(settings["state"])
         if settings.get("estimate") is not None:

@@ -9,21 +9,56 @@ module path, as a string.
 
 from __future__ import annotations
 
+import dataclasses
 import re
-from collections.abc import Mapping
+import sys
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
 from simiam.course.placeholders import Placeholder
 from simiam.laps import Gate
+from simiam.names import unknown_name
 from simiam.robot.quickbot import RobotSpec
 from simiam.signals import declared
 
 # The settings a supervisor understands by name (Supervisor attributes); others go in `extra`.
 NAMED_SETTINGS = ("v", "goal", "d_stop", "theta_d", "state")
+# The other settings a run may give (`extra`, a check's run settings; LocalBrain applies them all): the
+# supervisor attributes of later weeks (week 5's thresholds and its mode, week 6's wall), where the estimate
+# starts (x, y, theta), and controller gains ({"gains": {"go_to_goal": {"Kp": 4}}}). A name not here (or
+# not a state, below) is a misspelling, refused with the closest names rather than set and never read.
+EXTRA_SETTINGS = ("d_at_obs", "d_unsafe", "is_blending", "d_fw", "fw_direction", "estimate", "gains")
+# The course's states (controller names): a setting named after one gives that controller's gains.
+STATES = ("stop", "go_to_angle", "go_to_goal", "avoid_obstacles", "ao_and_gtg", "follow_wall", "sliding_mode")
 # The lines `simiam run` can print after a run (simiam/run.py `summary`): the distance driven, the heading
 # error to theta_d, the goal reached or not (a run without a goal prints the distance instead).
 SUMMARY_LINES = ("path", "heading", "goal")
+
+
+def unknown_setting(name: object, known: Iterable[str], where: str, kind: str = "setting") -> ValueError:
+    """The error for a setting nobody reads: `where` it was given, the name, the known name it most
+    likely meant, and every known name, closest first. `kind` names what it is ("setting", "gain")."""
+    return ValueError(f"{where}: {unknown_name(kind, name, known)}")
+
+
+def check_setting_names(settings: Iterable[object], known: Sequence[str], where: str) -> None:
+    """Refuse the first name in `settings` that is not in `known` (see `unknown_setting`)."""
+    for name in settings:
+        if not isinstance(name, str) or name not in known:
+            raise unknown_setting(name, known, where)
+
+
+def _given_at() -> str:
+    """'.../weeks/week6.py, line 70' for the code that built a SupervisorSettings (a week file, a check's
+    with_changes): the first frame on the stack outside this module, dataclasses and generated code."""
+    frame = sys._getframe(1)
+    while frame is not None:
+        file = frame.f_code.co_filename
+        if file not in (__file__, dataclasses.__file__) and not file.startswith("<"):
+            return f"{file}, line {frame.f_lineno}"
+        frame = frame.f_back
+    return "SupervisorSettings"
 
 
 @dataclass(frozen=True)
@@ -33,7 +68,9 @@ class SupervisorSettings:
     `v` forward speed (m/s), `goal` (x_g, y_g) in metres, `d_stop` arrival radius (m), `theta_d` the
     heading of week 2 (rad), `state` the first controller's name. `extra` is open for later weeks'
     settings (e.g. `{"d_at_obs": 0.15, "d_fw": 0.1}`) and for controller gains
-    (`{"go_to_goal": {"Kp": 4}}`), passed on by name as LocalBrain understands them.
+    (`{"go_to_goal": {"Kp": 4}}`), passed on by name as LocalBrain understands them. A name in `extra`
+    that is none of EXTRA_SETTINGS and STATES is refused (a ValueError naming the file and line that gave
+    it and the known names, closest first): a misspelt setting would be set and never read.
     """
 
     v: float | None = None
@@ -47,6 +84,9 @@ class SupervisorSettings:
         clash = sorted(set(self.extra) & set(NAMED_SETTINGS))
         if clash:
             raise ValueError(f"SupervisorSettings: {', '.join(clash)} are fields, not extra settings")
+        known = EXTRA_SETTINGS + STATES
+        if any(not isinstance(name, str) or name not in known for name in self.extra):  # only then the stack
+            check_setting_names(self.extra, known, f"{_given_at()}: SupervisorSettings extra")
 
     def as_dict(self) -> dict[str, Any]:
         """The settings LocalBrain / RemoteBrain take: the fields that are set, then `extra`."""

@@ -27,6 +27,7 @@ from importlib import resources
 from pathlib import Path
 from xml.parsers import expat
 
+from simiam.names import unknown_name
 from simiam.physics.transform import transform_point
 from simiam.world.world import World
 
@@ -37,6 +38,12 @@ _CHILDREN = {
     "geometry": {"point"},
     "app": set(), "supervisor": set(), "pose": set(), "driver": set(), "optitrack": set(),
     "point": set(), "goal": set(),
+}
+# The attributes each element may carry; a misspelt one (`thetaa`, a goal's `d_stop`) is refused rather
+# than ignored. <driver> and <optitrack> are the original's hardware settings, ignored whatever they hold.
+_ATTRIBUTES = {
+    "simulation": (), "app": ("type",), "robot": ("type",), "supervisor": ("type",),
+    "pose": ("x", "y", "theta"), "obstacle": (), "geometry": (), "point": ("x", "y"), "goal": ("x", "y"),
 }
 
 
@@ -112,6 +119,10 @@ class _Reader:
         return value
 
     def check_children(self, el: ET.Element) -> None:
+        known = _ATTRIBUTES.get(el.tag)
+        for name in el.attrib:
+            if known is not None and name not in known:
+                raise self.error(el, unknown_name("attribute", name, known, of=f"<{el.tag}>"))
         allowed = _CHILDREN.get(el.tag, set())
         for child in el:
             if child.tag not in allowed:

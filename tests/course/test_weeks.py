@@ -216,3 +216,34 @@ def test_a_week_with_hidden_checks_says_what_they_vary() -> None:
         assert bool(week.hidden_variants) == bool(hidden), (week.name, hidden, week.hidden_variants)
     assert weeks.hidden_variants("week5") == "other start poses and goals, blending and switching"
     assert weeks.hidden_variants(99) == weeks.HIDDEN_VARIANTS_UNSAID
+
+
+def test_a_misspelt_setting_in_a_week_file_is_refused_naming_file_line_and_the_known_ones(
+        extra_weeks: Path) -> None:
+    """The kept wrong version (tests/data/weeks/week9_misspelt_setting.py): week 6's settings with
+    "fw_directon" in `extra`. The week is refused where it is declared, with the name it meant first."""
+    wrong = Path(__file__).resolve().parents[1] / "data" / "weeks" / "week9_misspelt_setting.py"
+    text = wrong.read_text()
+    (extra_weeks / "week9.py").write_text(text)
+    line = next(i for i, t in enumerate(text.splitlines(), 1) if "SupervisorSettings(" in t)
+    weeks.refresh()
+    with pytest.raises(ValueError) as refused:
+        week_numbers()
+    message = str(refused.value)
+    assert f"week9.py, line {line}: SupervisorSettings extra: unknown setting 'fw_directon' (did you mean " \
+           "'fw_direction'?); the settings are, closest first: fw_direction, " in message
+    assert all(name in message for name in ("d_fw", "is_blending", "estimate", "gains", "go_to_goal"))
+
+
+def test_every_weeks_settings_and_a_checks_changes_pass_the_names_check() -> None:
+    """Valid settings stay valid: every week's own, and the changes its checks make (week 5's mode)."""
+    for week in all_weeks():
+        assert week.settings.with_changes(goal=(0.5, 0.5), d_stop=0.02).goal == (0.5, 0.5)
+    assert get_week(5).settings.with_changes(is_blending=False).as_dict()["is_blending"] is False
+    assert SupervisorSettings(extra={"d_fw": 0.1, "go_to_goal": {"Kp": 4}, "estimate": [0, 0, 1]}).extra
+    misspelt = (r"test_weeks.py, line \d+: SupervisorSettings extra: unknown setting 'is_blendng' \(did you "
+                r"mean 'is_blending'\?\)")
+    with pytest.raises(ValueError, match=misspelt):
+        get_week(5).settings.with_changes(is_blendng=False)
+    with pytest.raises(ValueError, match="a setting's name is a string, not int 3"):
+        SupervisorSettings(extra={3: 1})

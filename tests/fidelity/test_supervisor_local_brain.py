@@ -57,6 +57,24 @@ def test_top_level_gains_are_accepted_and_unknown_controllers_refused():
         _brain(3, {"state": "follow_wall"})
 
 
+@pytest.mark.parametrize(("settings", "words"), [
+    ({"v": 0.15, "fw_directon": "right"},
+     "the settings of this run: unknown setting 'fw_directon' (did you mean 'fw_direction'?); the settings "
+     "are, closest first: fw_direction"),
+    ({"Goal": [1, 1]}, "unknown setting 'Goal' (did you mean 'goal'?)"),
+    ({"gains": {"go_to_goal": {"kp": 4}}}, "the gains of go_to_goal: unknown gain 'kp' (did you mean 'Kp'?); "
+                                           "the gains are, closest first: Kp, "),
+    ({"go_to_goal": {"K_d": 4}}, "unknown gain 'K_d' (did you mean 'Kd'?)"),
+])
+def test_a_misspelt_setting_or_gain_is_refused_not_set(settings, words):
+    """Set and never read, a misspelt setting would leave the student's own value in force: refused, with
+    the name it most likely meant and the known ones, closest first (the week's settings, the student's
+    controllers; a controller's own numbers for its gains)."""
+    with pytest.raises(ValueError) as refused:
+        _brain(6 if "fw_directon" in settings else 3, settings)
+    assert words in str(refused.value)
+
+
 def test_at_goal_uses_the_estimate_not_the_true_pose():
     """Start the estimate at the goal: the week-3 supervisor stops at once, whatever the true pose."""
     sub = load_submission(ROOT / "solutions/week3", 3)

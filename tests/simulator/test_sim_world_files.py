@@ -1,5 +1,5 @@
 """World files: the packaged worlds load, and broken files give a WorldFileError naming the file, the
-line, the element and what is wrong (never a raw traceback)."""
+line, the element and what is wrong (never a raw traceback); a misspelt attribute is one of them."""
 
 from __future__ import annotations
 
@@ -18,6 +18,9 @@ EXPECTED = {
     "two_points.xml": ["line 9", "<geometry>", "2 point", "at least 3"],
     "unknown_element.xml": ["line 10", "<vertex>", "unknown element"],
     "syntax_error.xml": ["line 13", "XML syntax error", "mismatched tag"],
+    # a misspelt attribute was ignored (the robot started at theta 0): refused, with the closest names
+    "misspelt_attribute.xml": ["line 5", "<pose>", "unknown attribute 'thetaa' (did you mean 'theta'?)",
+                               "the attributes of <pose> are, closest first: theta, x, y"],
 }
 
 

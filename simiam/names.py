@@ -1,0 +1,43 @@
+"""A misspelt name, named: the names that are known, the closest first, and the one it most likely meant.
+
+Used where a name nobody reads would otherwise be accepted silently: a supervisor setting or gain
+(simiam.course.week, LocalBrain) and an attribute in a world file (simiam.world.settings_xml).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+
+def closest_first(name: str, known: Iterable[str]) -> list[str]:
+    """The `known` names, the most like `name` first (difflib's similarity ratio, the one its
+    get_close_matches ranks suggestions by; equally close names keep their order)."""
+    import difflib  # only when a name is wrong: the sandbox worker imports this module on every start
+
+    return sorted(known, key=lambda k: -difflib.SequenceMatcher(None, k, name).ratio())
+
+
+def likely_meant(name: str, known: Iterable[str]) -> str | None:
+    """The known name `name` most likely meant: the same name in other capitals, else difflib's best
+    match (ratio 0.6 or more); None when nothing is close."""
+    import difflib
+
+    known = list(known)
+    same = [k for k in known if k.lower() == name.lower()]
+    close = same or difflib.get_close_matches(name, known, n=1)
+    return close[0] if close else None
+
+
+def unknown_name(kind: str, name: object, known: Iterable[str], of: str = "") -> str:
+    """"unknown setting 'd_fww' (did you mean 'd_fw'?); the settings are, closest first: d_fw, ...":
+    the name (shown as repr, capped), the likely meant one, and every known name, closest first (`of`:
+    whose names they are, e.g. "<pose>")."""
+    shown = repr(name) if len(repr(name)) <= 80 else repr(name)[:77] + "..."
+    if not isinstance(name, str):
+        return f"a {kind}'s name is a string, not {type(name).__name__} {shown}"
+    ranked = closest_first(name, known)
+    meant = likely_meant(name, ranked)
+    guess = f" (did you mean {meant!r}?)" if meant else ""
+    whose = f" of {of}" if of else ""
+    listed = ", ".join(ranked) or "none"
+    return f"unknown {kind} {shown}{guess}; the {kind}s{whose} are, closest first: {listed}"
