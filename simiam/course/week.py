@@ -14,6 +14,7 @@ import re
 import sys
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
+from types import FrameType
 from typing import Any
 
 from simiam.course.placeholders import Placeholder
@@ -52,7 +53,7 @@ def check_setting_names(settings: Iterable[object], known: Sequence[str], where:
 def _given_at() -> str:
     """'.../weeks/week6.py, line 70' for the code that built a SupervisorSettings (a week file, a check's
     with_changes): the first frame on the stack outside this module, dataclasses and generated code."""
-    frame = sys._getframe(1)
+    frame: FrameType | None = sys._getframe(1)
     while frame is not None:
         file = frame.f_code.co_filename
         if file not in (__file__, dataclasses.__file__) and not file.startswith("<"):
