@@ -17,14 +17,14 @@ def closest_first(name: str, known: Iterable[str]) -> list[str]:
     return sorted(known, key=lambda k: -difflib.SequenceMatcher(None, k, name).ratio())
 
 
-def likely_meant(name: str, known: Iterable[str]) -> str | None:
+def likely_meant(name: str, known: Iterable[str], cutoff: float = 0.6) -> str | None:
     """The known name `name` most likely meant: the same name in other capitals, else difflib's best
-    match (ratio 0.6 or more); None when nothing is close."""
+    match (similarity `cutoff` or more); None when nothing is close."""
     import difflib
 
     known = list(known)
     same = [k for k in known if k.lower() == name.lower()]
-    close = same or difflib.get_close_matches(name, known, n=1)
+    close = same or difflib.get_close_matches(name, known, n=1, cutoff=cutoff)
     return close[0] if close else None
 
 

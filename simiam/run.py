@@ -5,7 +5,8 @@ headless, writes the trace (CSV and JSON) and the replay page, and prints a shor
 that does not load prints its LoadErrors (file:line: message) and exits 1; an exception inside the
 student's code during the run is reported the same way, after writing the trace up to that step, and so is
 a step that runs longer than grade allows (an endless loop: where it was running, as grade says it). Edits
-outside the code blocks are run here but not by grade: they are listed as warnings first.
+outside the code blocks are run here but not by grade: they are listed as warnings first, and so are
+settings the supervisor sets under a misspelt name (set, never read: the run keeps the default).
 """
 
 from __future__ import annotations
@@ -76,7 +77,7 @@ def main(args: argparse.Namespace) -> int:
     except (WorldFileError, OSError) as exc:
         return _fail(f"simiam run: cannot read the world: {exc}", 2)
 
-    for note in outside_edit_notes(week, folder):
+    for note in outside_edit_notes(week, folder) + misspelt_setting_notes(folder):
         print(f"warning: {note}", file=sys.stderr)
     with tempfile.TemporaryDirectory(prefix="simiam-run-") as tmp:
         run_folder, notes = fill_missing_files(week, folder, Path(tmp))
@@ -212,6 +213,18 @@ def outside_edit_notes(week: Week, folder: Path) -> list[str]:
         notes += [f"{edit} (simiam run ran this edit, but grade runs only the code blocks)"
                   for edit in result.outside_edits]
     return notes
+
+
+def misspelt_setting_notes(folder: Path) -> list[str]:
+    """Settings the student's QBSupervisor sets under a misspelt name (simiam.course.misspelt_settings):
+    set and never read, they leave the run on the default value."""
+    from simiam.course.misspelt_settings import misspelt_settings
+
+    path = folder / "qb_supervisor.py"
+    if not path.is_file():
+        return []
+    return [f"{note} (this run uses the simulator's default for it)"
+            for note in misspelt_settings(path.read_text(encoding="utf-8", errors="replace"), path.name)]
 
 
 def _write_replay(trace_json: dict, path: Path) -> Path | None:
