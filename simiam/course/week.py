@@ -30,8 +30,8 @@ NAMED_SETTINGS = ("v", "goal", "d_stop", "theta_d", "state")
 # starts (x, y, theta), and controller gains ({"gains": {"go_to_goal": {"Kp": 4}}}). A name not here (or
 # not a state, below) is a misspelling, refused with the closest names rather than set and never read.
 EXTRA_SETTINGS = ("d_at_obs", "d_unsafe", "is_blending", "d_fw", "fw_direction", "estimate", "gains")
-# The course's states (controller names): a setting named after one gives that controller's gains.
-STATES = ("stop", "go_to_angle", "go_to_goal", "avoid_obstacles", "ao_and_gtg", "follow_wall", "sliding_mode")
+# The course's states (the controllers the solutions add): a setting named after one gives its gains.
+STATES = ("stop", "go_to_angle", "go_to_goal", "avoid_obstacles", "ao_and_gtg", "follow_wall")
 # The lines `simiam run` can print after a run (simiam/run.py `summary`): the distance driven, the heading
 # error to theta_d, the goal reached or not (a run without a goal prints the distance instead).
 SUMMARY_LINES = ("path", "heading", "goal")
@@ -123,8 +123,8 @@ class Week:
     - `lap_gate`: for a week whose runs drive laps around an obstacle, the gate a lap crosses
       (simiam.laps.Gate, in the running direction of the week's own run); `simiam run` then prints the
       laps, and the week's checks count them through it. None: no laps.
-    - `hidden_variants`: in a few words, what the week's hidden checks vary ("other goals", "the other
-      side, other start headings and distances d_fw"): `grade`'s terminal output and report say it where
+    - `hidden_variants`: in a few words, what the week's hidden checks vary ("other goals", "either side,
+      other start headings and distances d_fw"): `grade`'s terminal output and report say it where
       hidden checks are counted ("2 hidden checks (other goals, drawn per seed) run at official grading").
       Empty for a week without hidden checks.
     """

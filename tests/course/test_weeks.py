@@ -247,3 +247,19 @@ def test_every_weeks_settings_and_a_checks_changes_pass_the_names_check() -> Non
         get_week(5).settings.with_changes(is_blendng=False)
     with pytest.raises(ValueError, match="a setting's name is a string, not int 3"):
         SupervisorSettings(extra={3: 1})
+
+
+def test_the_declared_states_are_the_solutions_controllers() -> None:
+    """STATES (the names a week's `extra` may give gains for) are the controllers the course's
+    supervisors add: a new controller in a later week is declared there too."""
+    from simiam.control.local_brain import LocalBrain
+    from simiam.course.loader import load_submission
+    from simiam.course.week import STATES
+
+    root = Path(__file__).resolve().parents[2]
+    added = set()
+    for week in all_weeks():
+        submission = load_submission(root / "solutions" / week.name, week)
+        assert submission.ok, submission.errors
+        added |= set(LocalBrain(submission, week).supervisor.controllers)
+    assert added == set(STATES)
