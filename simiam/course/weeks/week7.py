@@ -98,6 +98,6 @@ WEEK = Week(
     debug_signals=("v", "w", "theta_g", "u_ao", "u_gtg", "u_fw_t", "u_fw_p", "ir_points_wf", "fw_direction",
                    "d_prog", "switches", "at_goal", "at_obstacle", "unsafe", "obstacle_cleared",
                    "progress_made", "sliding_left", "sliding_right", "sigma_left", "sigma_right"),
-    hidden_variants="other goals in the trap world, turned about the start",
+    hidden_variants="other goals and start headings in the trap world",
     summary=("goal",),
 )
