@@ -12,30 +12,34 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import NamedTuple
 
 Point = tuple[float, float]
 
 
-@dataclass(frozen=True)
-class Gate:
-    """The segment x = `x`, y in [y_low, y_high]; `sign` +1 if the running direction crosses it toward
-    larger x, -1 toward smaller x."""
-
+class _Segment(NamedTuple):
     x: float
     y_low: float
     y_high: float
     sign: int
 
-    def __post_init__(self) -> None:
-        ends = (self.x, self.y_low, self.y_high)
-        if not all(isinstance(v, (int, float)) and math.isfinite(v) for v in ends):
-            raise ValueError(f"Gate: x, y_low and y_high must be finite numbers, got {self!r}")
-        if not self.y_low < self.y_high:
-            raise ValueError(f"Gate: y_low must be below y_high, got {self.y_low} and {self.y_high}")
-        if self.sign not in (1, -1) or isinstance(self.sign, bool):
-            raise ValueError(f"Gate: sign must be +1 (toward larger x) or -1, got {self.sign!r}")
+
+class Gate(_Segment):
+    """The segment x = `x`, y in [y_low, y_high]; `sign` +1 if the running direction crosses it toward
+    larger x, -1 toward smaller x. Immutable; checked when made. (A NamedTuple rather than a frozen
+    dataclass, as LapCount below: week 6's declaration, which the sandbox worker imports on every start,
+    builds one, and a dataclass costs about a millisecond to create.)"""
+
+    __slots__ = ()
+
+    def __new__(cls, x: float, y_low: float, y_high: float, sign: int) -> Gate:
+        if not all(isinstance(v, (int, float)) and math.isfinite(v) for v in (x, y_low, y_high)):
+            raise ValueError(f"Gate: x, y_low and y_high must be finite numbers, got {(x, y_low, y_high)!r}")
+        if not y_low < y_high:
+            raise ValueError(f"Gate: y_low must be below y_high, got {y_low} and {y_high}")
+        if sign not in (1, -1) or isinstance(sign, bool):
+            raise ValueError(f"Gate: sign must be +1 (toward larger x) or -1, got {sign!r}")
+        return super().__new__(cls, x, y_low, y_high, sign)
 
     def reversed(self) -> Gate:
         """The same segment with the other running direction (the robot going round the other way)."""
@@ -77,9 +81,7 @@ def laps(xs: Sequence[float], ys: Sequence[float], gate: Gate) -> list[int]:
 
 class LapCount(NamedTuple):
     """The laps of one run through a gate: `gate` (as declared, or reversed when the robot went round the
-    other way), `done` the most laps completed at any time, `times` when each of them was first done (s).
-    (A NamedTuple, not a frozen dataclass: this module is imported on every worker start, and a dataclass
-    costs a millisecond to build.)"""
+    other way), `done` the most laps completed at any time, `times` when each of them was first done (s)."""
 
     gate: Gate
     done: int

@@ -43,7 +43,7 @@ EXPOSED: tuple[str, ...] = (
     *sorted(f"simiam/course/weeks/{p.name}"  # every declared week (adding a week is adding a file)
             for p in (Path(simiam.__file__).parent / "course" / "weeks").glob("week*.py")),
     "simiam/laps.py",                  # week 6's declaration holds its lap gate (no student block)
-    "simiam/names.py",                 # the settings' check names a misspelt one (simiam.course.week)
+    "simiam/names.py",                 # a misspelt setting's error (imported only then: simiam.course.week)
     "simiam/robot/__init__.py",
     "simiam/robot/quickbot.py",
     "simiam/signals.py",               # LocalBrain reads the debug signals with it

@@ -14,14 +14,15 @@ import re
 import sys
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
-from types import FrameType
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from simiam.course.placeholders import Placeholder
 from simiam.laps import Gate
-from simiam.names import unknown_name
 from simiam.robot.quickbot import RobotSpec
 from simiam.signals import declared
+
+if TYPE_CHECKING:
+    from types import FrameType
 
 # The settings a supervisor understands by name (Supervisor attributes); others go in `extra`.
 NAMED_SETTINGS = ("v", "goal", "d_stop", "theta_d", "state")
@@ -40,6 +41,8 @@ SUMMARY_LINES = ("path", "heading", "goal")
 def unknown_setting(name: object, known: Iterable[str], where: str, kind: str = "setting") -> ValueError:
     """The error for a setting nobody reads: `where` it was given, the name, the known name it most
     likely meant, and every known name, closest first. `kind` names what it is ("setting", "gain")."""
+    from simiam.names import unknown_name  # only for a wrong name: the worker imports this module at start
+
     return ValueError(f"{where}: {unknown_name(kind, name, known)}")
 
 

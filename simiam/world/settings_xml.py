@@ -27,7 +27,6 @@ from importlib import resources
 from pathlib import Path
 from xml.parsers import expat
 
-from simiam.names import unknown_name
 from simiam.physics.transform import transform_point
 from simiam.world.world import World
 
@@ -122,6 +121,8 @@ class _Reader:
         known = _ATTRIBUTES.get(el.tag)
         for name in el.attrib:
             if known is not None and name not in known:
+                from simiam.names import unknown_name
+
                 raise self.error(el, unknown_name("attribute", name, known, of=f"<{el.tag}>"))
         allowed = _CHILDREN.get(el.tag, set())
         for child in el:
