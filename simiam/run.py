@@ -24,12 +24,12 @@ from simiam.course.folders import WeekFolderNotFound, week_folder
 from simiam.course.loader import load_submission, locate_in_folder
 from simiam.course.week import Week
 from simiam.course.weeks import get_week
-from simiam.laps import count_laps
+from simiam.laps import Gate, count_laps
 from simiam.run_limit import LimitedBrain, StepTimeout, step_limit, stuck_at
 from simiam.signals import week_signals
 from simiam.simulator import Simulator
 from simiam.trace import Ending, EndReason, Trace
-from simiam.world import WorldFileError, load_world
+from simiam.world import World, WorldFileError, load_world
 
 MAX_STEPS = 1_000_000  # 9 simulated hours at 0.033 s; a trace of that size is already ~1 GB in memory
 STEP_SECONDS = 2.0  # wall time one step of the student's code may take (grade's limit per call)
@@ -154,7 +154,7 @@ def _run(args: argparse.Namespace, week: Week, folder: Path, run_folder: Path, w
     if replay is not None:
         print(f"replay: {replay}")
     print()
-    print(summary(week, folder, trace, sup))
+    print(summary(week, folder, trace, sup, gate=lap_gate(week, world)))
     if error:
         print(file=sys.stderr)
         print(error, file=sys.stderr)
@@ -235,10 +235,23 @@ def _write_replay(trace_json: dict, path: Path) -> Path | None:
     return write_replay(trace_json, path)
 
 
-def summary(week: Week, folder: Path, trace: Trace, sup: Supervisor) -> str:
+def lap_gate(week: Week, world: World) -> Gate | None:
+    """The week's lap gate for a run in the week's own world (`--world` a copy of it too); None otherwise:
+    a gate placed for one world says nothing about laps in another."""
+    if week.lap_gate is None:
+        return None
+    try:
+        own = load_world(week.world)
+    except (WorldFileError, OSError):
+        return None
+    return week.lap_gate if world.obstacles == own.obstacles else None
+
+
+def summary(week: Week, folder: Path, trace: Trace, sup: Supervisor, gate: Gate | None = None) -> str:
     """One paragraph: final pose, estimate, collision, then the goal (a run with one), the heading
-    (a week whose `summary` names it) or the distance driven; then, for a week that declares a lap gate,
-    the laps through it (counted as `grade` counts them, in whichever direction the robot went round)."""
+    (a week whose `summary` names it) or the distance driven; then, with a lap `gate` (a week that
+    declares one, in its world), the laps through it (counted as `grade` counts them, in whichever
+    direction the robot went round)."""
     s = trace.steps
     n = len(trace) - 1
     x, y, theta = s["x"][-1], s["y"][-1], s["theta"][-1]
@@ -268,6 +281,6 @@ def summary(week: Week, folder: Path, trace: Trace, sup: Supervisor) -> str:
     else:
         path = sum(math.hypot(s["x"][k + 1] - s["x"][k], s["y"][k + 1] - s["y"][k]) for k in range(n))
         parts.append(f"Distance driven: {path:.2f} m.")
-    if week.lap_gate is not None:
-        parts.append(count_laps(s["x"], s["y"], s["t"], week.lap_gate).words())
+    if gate is not None:
+        parts.append(count_laps(s["x"], s["y"], s["t"], gate).words())
     return " ".join(parts)

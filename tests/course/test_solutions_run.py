@@ -76,6 +76,22 @@ def test_the_laps_line_follows_the_weeks_declaration(tmp_path, capsys, monkeypat
     assert "Laps" not in capsys.readouterr().out
 
 
+def test_laps_are_counted_in_the_weeks_own_world_only(tmp_path, capsys):
+    """A gate placed for the week-6 world says nothing about another world (--world); a copy of the
+    week's own world file still counts."""
+    from simiam.world import world_path
+
+    args = _args("week6", tmp_path, solutions=True, seconds=2.0, dt=0.05)
+    args.world = "final"  # (week 4's world is week 6's)
+    assert main(args) == 0
+    assert "Laps" not in capsys.readouterr().out
+    shutil.copy(world_path("week6"), tmp_path / "mine.xml")
+    args.world = str(tmp_path / "mine.xml")
+    assert main(args) == 0
+    out = capsys.readouterr().out
+    assert "Laps: 0 through the gate (x = 0 from y = -1.4 to 0.2, crossed toward +x)." in out
+
+
 def test_week5_blending_reports_its_goal(tmp_path, capsys):
     """Week 5 starts in ao_and_gtg, which drives to the goal too: the summary says whether it got there."""
     assert main(_args("week5", tmp_path, solutions=True, seconds=12.0)) == 0
