@@ -212,5 +212,9 @@ def test_checks_catch_wrong_pages(open_page, synthetic, tmp_path, monkeypatch, m
 def test_at_home_the_legend_is_clear_of_the_walls(open_page, synthetic, tmp_path, viewport):
     page, errors = open_page(write_replay(synthetic.load("week3_goal.json"), tmp_path / "walls.html"))
     page.set_viewport_size(viewport)
+    # the page lays out again on its resize event, which the browser fires before its next frame: wait
+    # for that frame (two, to be sure), else a loaded machine measures the layout of the old size
+    page.wait_for_function("w => window.innerWidth === w", arg=viewport["width"])
+    page.evaluate("() => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
     assert legend_clear(page)
     assert errors == []
