@@ -16,6 +16,7 @@ simiam or grader fails there too, but the process can still open any file its us
 
 from __future__ import annotations
 
+import functools
 import shutil
 import sys
 from pathlib import Path
@@ -65,11 +66,17 @@ WORKER = "grader/inside/worker.py"
 
 def source_of(relative: str) -> Path:
     """Where an exposed file lives in this installation (checkout or site-packages)."""
-    top = {"simiam": simiam, "grader": grader}[relative.split("/", 1)[0]]
+    return _installed_at(relative.split("/", 1)[0]) / relative
+
+
+@functools.cache
+def _installed_at(package: str) -> Path:
+    """The folder holding the imported `package` (resolved once: every worker start reads every file)."""
+    top = {"simiam": simiam, "grader": grader}[package]
     if top.__file__ is None:  # a namespace package: some other folder named simiam or grader won
         raise RuntimeError(f"{top.__name__} is imported from {list(top.__path__)}, not from the installed "
                            "package: run from a folder without a stray one")
-    return Path(top.__file__).resolve().parent.parent / relative
+    return Path(top.__file__).resolve().parent.parent
 
 
 def build_library(into: Path) -> Path:

@@ -26,7 +26,8 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from grader.sandbox.exposed import WORKER, installed_copies
+from grader.sandbox.exposed import WORKER, build_library, installed_copies
+from grader.sandbox.library import shared_library
 
 BWRAP = "bwrap"
 SUBPROCESS = "subprocess"
@@ -225,6 +226,16 @@ def clean_env() -> dict[str, str]:
     """The worker's whole environment: nothing inherited from the grader (no tokens, no paths)."""
     return {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1",
             "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+
+
+def worker_library(mode: str, beside: Path) -> Path:
+    """The folder of the only simiam and grader a worker in `mode` can import (grader.sandbox.exposed).
+    bubblewrap binds it read-only, so every bubblewrap worker shares one, with its bytecode, built once
+    (grader.sandbox.library); a plain subprocess may run as a user who can write to it, so it gets a
+    fresh copy at `beside` (removed with the session's files)."""
+    if mode == BWRAP:
+        return shared_library()
+    return build_library(beside)
 
 
 def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int, library: Path,

@@ -36,7 +36,6 @@ from grader.inside.caps import (
 from grader.sandbox import isolation
 from grader.sandbox.capabilities import has_module, with_refused_limits
 from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeout, WorkerDied
-from grader.sandbox.exposed import build_library
 from grader.sandbox.limits import Limits
 from grader.sandbox.runner import RequestTooLarge, WorkerProcess
 from grader.sandbox.stuck import Stuck, find_stuck
@@ -187,8 +186,8 @@ class StudentSession:
         if self._work is None:
             self._uid = isolation.pick_uid()
             work = WorkCopy(self.spliced_dir, self._uid)
-            try:  # the only simiam/grader the worker can import, next to the copy (removed with it)
-                self._library = build_library(work.path.parent / "library")
+            try:  # the only simiam/grader the worker can import (shared, or beside the copy, removed with it)
+                self._library = isolation.worker_library(self.isolation, work.path.parent / "library")
             except BaseException:  # kept half-built, the next start would run without a library
                 work.remove()
                 raise

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import shutil
 import tempfile
 import uuid
@@ -13,6 +14,21 @@ from sandbox_helpers import LIMITS, PROBES, make_submission
 from grader.sandbox.isolation import BWRAP, SUBPROCESS, bwrap_works
 from grader.sandbox.limits import Limits
 from grader.sandbox.session import StudentSession
+
+
+@pytest.fixture(scope="session", autouse=True)
+def private_library_cache():
+    """The workers' shared library (grader.sandbox.library) in a folder of this test run: the wrong versions
+    some tests expose (the whole simiam package, a weaker seccomp filter) stay out of the user's cache."""
+    folder = tempfile.mkdtemp(prefix="simiam-library-cache-test-")
+    before = os.environ.get("SIMIAM_CACHE_DIR")
+    os.environ["SIMIAM_CACHE_DIR"] = folder
+    yield Path(folder)
+    if before is None:
+        os.environ.pop("SIMIAM_CACHE_DIR", None)
+    else:
+        os.environ["SIMIAM_CACHE_DIR"] = before
+    shutil.rmtree(folder, ignore_errors=True)
 
 
 @pytest.fixture
