@@ -44,7 +44,7 @@ _STDLIB = ("cmath", "random", "statistics", "functools", "itertools", "collectio
            "dataclasses", "typing", "enum", "abc", "numbers", "operator", "re", "warnings", "traceback",
            "inspect", "signal", "socket", "select", "subprocess", "threading", "struct", "io", "string",
            "textwrap", "heapq", "bisect", "decimal", "fractions", "datetime", "array", "queue", "contextlib",
-           "encodings.idna")
+           "encodings.idna", "difflib")  # difflib: the supervisor's "did you mean", imported when needed
 
 
 def _die_with_parent(parent: int | None) -> None:

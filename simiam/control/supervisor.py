@@ -10,7 +10,6 @@ printed "no state exists with name ..." and went on (check_event returned false)
 
 from __future__ import annotations
 
-import difflib
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -62,6 +61,8 @@ def _unknown(kind: str, name: object, known: list[str]) -> UnknownNameError:
         text = f"{article} {kind} name is a string{example}, not {type(name).__name__} {shown}"
     else:
         text = f"no {kind} exists with name {shown} (the {kind}s are: {', '.join(known)})"
+        import difflib  # only for this message: not imported by every sandboxed worker's start
+
         close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
         if close:
             text += f"; did you mean {close[0]!r}?"

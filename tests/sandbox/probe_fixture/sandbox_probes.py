@@ -6,7 +6,7 @@
 
 from types import SimpleNamespace
 
-__all__ = ["attack", "uni_to_diff", "echo", "nap"]
+__all__ = ["attack", "uni_to_diff", "echo", "nap", "modules"]
 
 
 def _robot() -> SimpleNamespace:
@@ -31,6 +31,16 @@ def nap(sub, seconds: float = 0.0):
 
     time.sleep(seconds)
     return seconds
+
+
+def modules(sub, extra=()):
+    """The names of the modules the worker holds after its start, the load and importing `extra`."""
+    import importlib
+    import sys
+
+    for name in extra:
+        importlib.import_module(name)
+    return sorted(sys.modules)
 
 
 def not_allowed(sub):  # public but not in __all__: the worker must refuse it

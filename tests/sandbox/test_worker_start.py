@@ -1,0 +1,42 @@
+"""What a worker's start imports (issue 15: its CPU). numpy stays (the course's quickbot.py calls np.polyval
+every step); modules that only some error message or a base class needed are kept out of the preloads."""
+
+from __future__ import annotations
+
+from grader.sandbox import exposed
+
+# module -> who pulled it in before, and what it cost every worker start (CPU, after numpy)
+COSTLY = {
+    "importlib.abc": "simiam.course.loader's finder base class: importlib.resources, tempfile, shutil, "
+                     "bz2, lzma, random; 10-18 ms",
+    "importlib.resources": "the same",
+    "tempfile": "the same",
+    "difflib": "simiam.control.supervisor's 'did you mean': 1.8 ms",
+}
+WORKER_MODULES = ["grader.inside.probes"]  # what a grading worker preloads besides the test probes
+
+
+def _loaded(session) -> set[str]:
+    assert session.load()["errors"] == []
+    return set(session.call("probe", name="modules", args={"extra": WORKER_MODULES}))
+
+
+def test_a_worker_start_imports_none_of_the_costly_modules(open_one):
+    loaded = _loaded(open_one("_honest"))
+    assert {"numpy", "simiam.control", "simiam.course.loader", "grader.inside.worker_loop",
+            "grader.inside.probes"} <= loaded
+    assert loaded.isdisjoint(COSTLY), sorted(loaded & set(COSTLY))
+
+
+def test_the_test_sees_a_costly_import(open_one, monkeypatch, tmp_path):
+    """The wrong version: the loader's finder derived from importlib.abc.MetaPathFinder again."""
+    wrong = tmp_path / "loader.py"
+    text = exposed.source_of("simiam/course/loader.py").read_text()
+    wrong.write_text(text.replace("class _SubmissionFinder:", "import importlib.abc\n\n\n"
+                                  "class _SubmissionFinder(importlib.abc.MetaPathFinder):"))
+    assert wrong.read_text() != text
+    real = exposed.source_of
+    monkeypatch.setattr(exposed, "source_of",
+                        lambda relative: wrong if relative == "simiam/course/loader.py" else real(relative))
+    loaded = _loaded(open_one("_honest"))
+    assert {"importlib.abc", "tempfile"} <= loaded
