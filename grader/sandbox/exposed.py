@@ -1,6 +1,7 @@
 """What the worker can import: the course's student-facing code and the worker's own, nothing trusted.
 
-The worker (and so student code) sees one library folder, built per session from the list below: the robot
+The worker (and so student code) sees one library folder built from the list below (grader.sandbox.library
+shares one, with bytecode, between bubblewrap workers; a plain subprocess gets a copy per session): the robot
 view, the supervisor/controller framework and the provided Stop controller (simiam.control), the week
 table and the loader (simiam.course), the robot's spec (simiam.robot.quickbot), and the worker's own
 package (grader.inside, which imports nothing else of simiam or grader: tests/sandbox/test_inside.py).
