@@ -90,3 +90,18 @@ def test_grade_and_batch_bench_say_when_the_sandbox_asked_for_is_missing():
                               capture_output=True, text=True, timeout=120)
         assert done.returncode == 2, done.stderr[-2000:]
         assert done.stderr.startswith("--sandbox bwrap: ") and "Traceback" not in done.stderr
+
+
+def test_worker_start_prints_every_piece_or_says_why_not():
+    """Needs root and a cpuacct cgroup: where either is missing it must say so and stop, not guess."""
+    done = subprocess.run([sys.executable, "benchmarks/worker_start.py", "--runs", "1"], cwd=ROOT,
+                          capture_output=True, text=True, timeout=600)
+    if done.returncode != 0:
+        assert "cannot make a cpuacct cgroup" in done.stderr or "bubblewrap is not usable" in done.stderr
+        assert "Traceback" not in done.stderr
+        return
+    assert MACHINE.search(done.stdout) and LOAD_AFTER.search(done.stdout)
+    for piece in ("bubblewrap -- /bin/true", "bubblewrap -- python: import numpy",
+                  "bubblewrap -- python: the worker's preloads", "fresh process: imports + a bare worker"):
+        figure = re.search(rf"^{re.escape(piece)} +([0-9.]+) ms CPU median", done.stdout, re.M)
+        assert figure and float(figure.group(1)) > 0, piece
