@@ -10,6 +10,9 @@ week's solution): bubblewrap running /bin/true; the interpreter (`python -I -S -
 `import numpy` inside it; the worker's preloads inside it (with the shared library of
 grader.sandbox.library), then whole sessions started in a fresh process: imports only, a bare worker
 (empty folder) and the week's solution loaded. Medians of `--runs`, alternating, with the machine line.
+`--compare TREE` runs the fresh-process pieces of another checkout too (PYTHONPATH=TREE, e.g. main
+unpacked with `git archive`), alternating with this one in every round: before and after under the same
+load.
 """
 
 from __future__ import annotations
@@ -62,22 +65,29 @@ def pieces(week: int) -> dict[str, list[str]]:
     paths = f"import sys; sys.path[:] = [p for p in sys.path if p] + {plan.config['paths']!r}\n"
     preload = paths + "".join(f"import {name}\n" for name in PRELOADS)
     preload += f"simiam.course.weeks.get_week({week})\n"
-    session = [sys.executable, "-c", SESSION]
     return {
         "bubblewrap -- /bin/true": [*sandbox, "--", "/bin/true"],
         "bubblewrap -- python -I -S -B -c pass": [*sandbox, "--", *python, "pass"],
         "bubblewrap -- python: import numpy": [*sandbox, "--", *python, paths + "import numpy"],
         "bubblewrap -- python: the worker's preloads": [*sandbox, "--", *python, preload],
-        "fresh process: import grader.grading": [sys.executable, "-c", "import grader.grading"],
-        "fresh process: imports + a bare worker": [*session, "", str(week)],
-        f"fresh process: imports + week {week} solution loaded": [*session, str(folder), str(week)],
     }
+
+
+def fresh_pieces(week: int, label: str = "") -> dict[str, list[str]]:
+    """Whole sessions, each in a fresh grading process (imports, worker start, load, close)."""
+    session = [sys.executable, "-c", SESSION]
+    folder = ROOT / "solutions" / f"week{week}"
+    name = f"fresh process{label}"
+    return {f"{name}: import grader.grading": [sys.executable, "-c", "import grader.grading"],
+            f"{name}: imports + a bare worker": [*session, "", str(week)],
+            f"{name}: imports + week {week} solution loaded": [*session, str(folder), str(week)]}
 
 
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=25)
     parser.add_argument("--week", type=int, default=3)
+    parser.add_argument("--compare", metavar="TREE", help="another checkout, measured alternately")
     args = parser.parse_args(argv)
     if not isolation.bwrap_works()[0]:
         raise SystemExit("bubblewrap is not usable here: " + isolation.bwrap_works()[1])
@@ -88,17 +98,21 @@ def main(argv: list[str] | None = None) -> None:
                          "cpuacct; use `python -m grader.sandbox.bench` instead") from None
     try:
         print(machine_line("bubblewrap"), flush=True)
-        commands = pieces(args.week)
+        commands = {**pieces(args.week), **fresh_pieces(args.week)}
+        envs: dict[str, dict | None] = {name: None for name in commands}
+        if args.compare:
+            other = fresh_pieces(args.week, f" ({args.compare})")
+            commands.update(other)
+            envs.update({name: dict(os.environ, PYTHONPATH=args.compare) for name in other})
         runs: dict[str, list[float]] = {name: [] for name in commands}
         for _ in range(args.runs):
             for name, command in commands.items():
                 before = _cpu()
-                subprocess.run(command, cwd=tempfile.gettempdir(), check=True, preexec_fn=_join,
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                subprocess.run(command, cwd=tempfile.gettempdir(), env=envs[name], check=True,
+                               preexec_fn=_join, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
                 runs[name].append(_cpu() - before)
         for name, cpu in runs.items():
-            print(f"{name:52} {statistics.median(cpu) * 1000:7.1f} ms CPU median, {min(cpu) * 1000:7.1f} min",
-                  flush=True)
+            print(f"{name:52} {statistics.median(cpu) * 1000:7.1f} ms CPU median, {min(cpu) * 1000:7.1f} min")
         print(load_after_line())
     finally:
         CGROUP.rmdir()
