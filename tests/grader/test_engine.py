@@ -198,12 +198,12 @@ print(sorted(m for m in ("numpy", "shapely", "hypothesis") if m in sys.modules))
 def test_a_worker_that_cannot_even_be_spawned_is_a_grader_error_not_a_crash(monkeypatch) -> None:
     """The worker is spawned before the checks run (StudentSession.start); a failure there (here the
     library copy hits a full disk) is raised by the first call and reported like any grader fault."""
-    import grader.sandbox.session as session
+    import grader.sandbox.isolation as isolation
 
-    def full_disk(into: Path) -> Path:
+    def full_disk(mode: str, beside: Path) -> Path:
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr(session, "build_library", full_disk)
+    monkeypatch.setattr(isolation, "worker_library", full_disk)
     result = grade_submission(3, ROOT / "solutions" / "week3", seed=1)
     assert result["status"] == "invalid" and result["score"] == 0
     assert "bug in the grader" in result["message"] and "OSError" in result["message"]
