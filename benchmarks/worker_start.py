@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal
 import statistics
 import subprocess
 import sys
@@ -91,6 +92,7 @@ def main(argv: list[str] | None = None) -> None:
     args = parser.parse_args(argv)
     if not isolation.bwrap_works()[0]:
         raise SystemExit("bubblewrap is not usable here: " + isolation.bwrap_works()[1])
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))  # so that the cgroup is removed (finally)
     try:
         CGROUP.mkdir()
     except OSError as exc:
