@@ -57,7 +57,7 @@ def shared_library() -> Path:
     """The library for the exposed files as they are now, with bytecode: reused if intact, else built.
 
     A grading process checks a library once; later workers reuse it while no exposed file changed
-    (same path, modification time, size and inode)."""
+    (same path, modification and change times, size and inode)."""
     paths = {relative: exposed.source_of(relative) for relative in exposed.EXPOSED}
     signature = tuple((relative, str(path), *_identity(path)) for relative, path in paths.items())
     known = _checked.get(signature)
@@ -73,9 +73,10 @@ def shared_library() -> Path:
     return Path(folder)
 
 
-def _identity(path: Path) -> tuple[int, int, int]:
+def _identity(path: Path) -> tuple[int, int, int, int]:
+    """What changes when the file does (ctime too: an edit that restores the mtime still changes it)."""
     info = os.stat(path)
-    return info.st_mtime_ns, info.st_size, info.st_ino
+    return info.st_mtime_ns, info.st_ctime_ns, info.st_size, info.st_ino
 
 
 def _ensure(root: str, key: str, sources: dict[str, bytes]) -> str:

@@ -69,6 +69,17 @@ def test_a_changed_source_gets_a_new_library_not_a_stale_one(cache, own_norm):
     assert (first / NORM).read_bytes() != (second / NORM).read_bytes()  # the old one is left as it was
 
 
+def test_an_edit_that_keeps_size_and_mtime_is_not_served_stale(cache, own_norm):
+    first = library.shared_library()
+    before = os.stat(own_norm)
+    text = own_norm.read_text()
+    own_norm.write_text(text.replace("import math", "import cmath", 1)[:len(text)].ljust(len(text)))
+    os.utime(own_norm, ns=(before.st_atime_ns, before.st_mtime_ns))
+    assert os.stat(own_norm).st_size == before.st_size and os.stat(own_norm).st_mtime_ns == before.st_mtime_ns
+    second = library.shared_library()
+    assert second != first and "import cmath" in (second / NORM).read_text()
+
+
 def test_a_damaged_library_is_rebuilt(cache):
     folder = library.shared_library()
     (folder / "simiam/robot/dynamics.py").write_text("print('not exposed')\n")
