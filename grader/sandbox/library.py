@@ -20,11 +20,9 @@ own user, who can equally edit the grader.
 
 from __future__ import annotations
 
-import atexit
 import hashlib
 import importlib.util
 import os
-import py_compile
 import shutil
 import sys
 import tempfile
@@ -107,6 +105,8 @@ def _ensure(root: str, key: str, sources: dict[str, bytes]) -> str:
 
 def _write(into: str, sources: dict[str, bytes]) -> None:
     """The sources and their bytecode (for a worker without -O), readable by any uid, in `into`."""
+    import py_compile  # only when a library is built: not on every grading process's import
+
     for relative, data in sources.items():
         target = os.path.join(into, relative)
         os.makedirs(os.path.dirname(target), exist_ok=True)
@@ -163,6 +163,8 @@ def _touch(folder: str) -> None:
 def _private_root() -> str:
     global _fallback_root
     if _fallback_root is None:
+        import atexit
+
         _fallback_root = tempfile.mkdtemp(prefix="simiam-library-")
         atexit.register(shutil.rmtree, _fallback_root, ignore_errors=True)
     return _fallback_root
