@@ -24,7 +24,7 @@ from chain_stalls import ChainStalls
 from grading_baseline import measure_baseline
 
 from grader.sandbox.errors import SandboxUnavailable
-from simiam.machine import Stopwatch, load_after_line, machine_line, ratio
+from simiam.machine import Stopwatch, load_after_line, machine_line, prepare_bytecode, ratio
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -79,12 +79,14 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.n < 1 or min(args.jobs) < 1:
         parser.error("--n and --jobs must be at least 1")
+    bytecode = prepare_bytecode()
     try:
         base = measure_baseline(args.sandbox)
     except SandboxUnavailable as exc:
         print(f"--sandbox {args.sandbox}: {exc}", file=sys.stderr)
         return 2
     print(machine_line(base.sandbox), flush=True)
+    print(bytecode, flush=True)
     print("\n".join(base.lines()), flush=True)
     print(f"{'week':>4} {'jobs':>4} {'n':>4} {'seconds':>8} {'subs/min':>9} {'CPU s/sub':>9} {'x base':>6} "
           f"{'wall s/sub':>10} {'x base':>6} {'grade s':>8} {'overhead s':>10} {'busy':>5} "

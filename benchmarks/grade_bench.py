@@ -25,7 +25,15 @@ from grading_baseline import Baseline, measure_baseline
 from grader.grading import grade_submission
 from grader.sandbox.errors import SandboxUnavailable
 from simiam.course.weeks import week_numbers
-from simiam.machine import Stopwatch, Usage, load_after_line, machine_line, median_usage, ratio
+from simiam.machine import (
+    Stopwatch,
+    Usage,
+    load_after_line,
+    machine_line,
+    median_usage,
+    prepare_bytecode,
+    ratio,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 _CLI = "import sys; from grader.cli import main; sys.exit(main())"  # what the `grade` script runs
@@ -61,12 +69,14 @@ def main(argv: list[str] | None = None) -> int:
     args = p.parse_args(argv)
     if args.repeat < 1:
         p.error("--repeat must be at least 1")
+    bytecode = prepare_bytecode()
     try:
         base = measure_baseline(args.sandbox, week=args.cli_week, runs=max(3, args.repeat))
     except SandboxUnavailable as exc:
         print(f"--sandbox {args.sandbox}: {exc}", file=sys.stderr)
         return 2
     print(machine_line(base.sandbox), flush=True)
+    print(bytecode, flush=True)
     print("\n".join(base.lines()), flush=True)
     runs = [cli_run(args.cli_week, args.sandbox) for _ in range(args.repeat)]
     print(_figure(f"grade week{args.cli_week} --solutions (fresh process)", runs, base), flush=True)

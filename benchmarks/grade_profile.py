@@ -36,7 +36,7 @@ import grader.cli  # noqa: E402, F401  (the imports a fresh `grade` pays before 
 import grader.grading as grading  # noqa: E402
 from grader.sandbox.session import RemoteBrain, StudentSession  # noqa: E402
 from simiam.course.weeks import week_numbers  # noqa: E402
-from simiam.machine import Stopwatch, descendants_cpu, load_after_line, machine_line  # noqa: E402
+from simiam.machine import Stopwatch, descendants_cpu, load_after_line, machine_line, prepare_bytecode  # noqa: E402
 
 IMPORT_WALL = time.perf_counter() - began_imports[0]
 IMPORT_CPU = time.process_time() - began_imports[1]
@@ -277,6 +277,7 @@ def main(argv: list[str] | None = None) -> int:
     from grader.sandbox.bench import sandbox_description
 
     print(machine_line(sandbox_description(args.sandbox)), flush=True)
+    print(prepare_bytecode(), flush=True)
     total, rows = import_breakdown(args.week, args.sandbox)
     print(f"1. imports of a fresh `grade week{args.week} --solutions` (python -X importtime, own time per "
           f"top-level package): {total:.2f} s in all")

@@ -30,6 +30,7 @@ from simiam.machine import (
     load_after_line,
     machine_line,
     median_usage,
+    prepare_bytecode,
     ratio,
 )
 
@@ -127,6 +128,7 @@ def main(argv: list[str] | None = None) -> None:
     if args.starts < 1 or args.calls < 1:
         parser.error("--starts and --calls must be at least 1")
     print(machine_line(sandbox_description()), flush=True)
+    print(prepare_bytecode(), flush=True)
     python = interpreter_start()
     echo = echo_round_trip(args.calls, python)
     print(f"baseline    interpreter start {python.wall * 1000:6.1f} ms wall, {python.cpu * 1000:6.1f} ms CPU"

@@ -92,3 +92,23 @@ def _cpu_of(pid: int) -> float:
 def _reaped_children_cpu() -> float:
     r = resource.getrusage(resource.RUSAGE_CHILDREN)
     return r.ru_utime + r.ru_stime
+
+
+def test_prepare_bytecode_compiles_what_is_missing_and_says_so(tmp_path, monkeypatch):
+    import importlib.util
+    import os
+    import sys
+
+    from simiam.machine import prepare_bytecode
+
+    package = tmp_path / "bytecode_probe_pkg"
+    (package / "sub").mkdir(parents=True)
+    for path in (package / "__init__.py", package / "sub" / "__init__.py", package / "sub" / "mod.py"):
+        path.write_text("X = 1\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    sys.modules.pop("bytecode_probe_pkg", None)
+    first = prepare_bytecode(("bytecode_probe_pkg",))
+    assert first.startswith("bytecode: 3 of 3 modules of bytecode_probe_pkg compiled")
+    cached = importlib.util.cache_from_source(str(package / "sub" / "mod.py"))
+    assert os.path.exists(cached)
+    assert prepare_bytecode(("bytecode_probe_pkg",)).startswith("bytecode: 0 of 3 modules")
