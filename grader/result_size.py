@@ -12,6 +12,8 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from grader.inside.shorten import keep_ends
+
 MAX_RESULT_BYTES = 2_000_000
 MAX_HTML_BYTES = 2_000_000
 # (longest text, longest list or dict) allowed at each round; the last one always fits
@@ -44,8 +46,7 @@ def bound_result(result: dict, limit: int = MAX_RESULT_BYTES) -> dict:
 
 def _clip(value: Any, text: int, items: int, depth: int) -> Any:
     if isinstance(value, str):
-        return value if len(value) <= text else \
-            value[:text // 2] + f" [... {len(value) - text} characters cut ...] " + value[-text // 2:]
+        return keep_ends(value, text)
     if depth > 24:
         return None
     if isinstance(value, list):

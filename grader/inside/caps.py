@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from grader.inside.shorten import keep_head
+
 FILE_CHARS = 200          # a file name inside the submission
 TYPE_CHARS = 100          # an exception type
 NAME_CHARS = 100          # a module, attribute or state name
@@ -27,11 +29,11 @@ def without_surrogates(text: str) -> str:
 
 
 def clip(value: Any, limit: int, default: str = "") -> str:
-    """``value`` as a string of at most ``limit`` characters (``default`` if it is not a string)."""
+    """``value`` as a string of at most ``limit`` characters, its start kept (grader.inside.shorten), or
+    ``default`` if it is not a string: a number where the worker owes a message is not one."""
     if not isinstance(value, str):
         return default
-    value = without_surrogates(value)
-    return value if len(value) <= limit else value[: limit - 25] + f" [... {len(value) - limit + 25} more]"
+    return keep_head(without_surrogates(value), limit)
 
 
 def clean(value: Any, depth: int = 0) -> Any:

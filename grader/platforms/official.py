@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from grader.batch.zips import SubmissionRefused
+from grader.inside.caps import clip as cap  # student output and messages are attacker-sized
 from grader.platforms.intake import collect
 
 SECRET_FORMAT = "simiam-secret/1"
@@ -146,14 +147,6 @@ def main(argv: list[str] | None = None) -> int:
     for name in answers:
         print(f"the installed package holds {name}", file=sys.stderr)
     return 1 if answers else 0
-
-
-def cap(text: object, limit: int) -> str:
-    """Text cut to `limit` characters, saying so (student output and messages are attacker-sized)."""
-    text = "" if text is None else str(text)
-    if len(text) <= limit:
-        return text
-    return text[: limit - 40] + f"\n... [{len(text) - limit + 40} characters cut]"
 
 
 if __name__ == "__main__":

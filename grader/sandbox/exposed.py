@@ -59,6 +59,7 @@ EXPOSED: tuple[str, ...] = (
     "grader/inside/protocol.py",
     "grader/inside/rlimits.py",
     "grader/inside/seccomp.py",
+    "grader/inside/shorten.py",
     "grader/inside/worker.py",
     "grader/inside/worker_loop.py",
 )

@@ -13,6 +13,8 @@ import struct
 import threading
 import time
 
+from grader.inside.shorten import keep_ends
+
 
 class CappedOutput:
     """Drains `fd` in a thread; keeps the first `cap` bytes."""
@@ -87,21 +89,9 @@ def _pending(fd: int) -> int:
         return 0
 
 
-_NOTE_ROOM = 60  # characters kept free for the note that replaces the middle
-
-
 def cut_middle(text: str, limit: int) -> str:
-    """`text` in at most `limit` characters: its first and last lines, with the middle replaced by a note
-    of how much was cut. The first lines say what the code printed first (where a student looks for their
-    debug output), the last ones what it printed just before it stopped."""
-    if len(text) <= limit:
-        return text
-    half = max(0, limit - _NOTE_ROOM) // 2
-    head, tail = text[:half], text[len(text) - half:]
-    # whole lines where that loses little: a cut inside a line reads as a wrong value
-    if "\n" in head[len(head) // 2:]:
-        head = head[: head.rindex("\n") + 1]
-    if "\n" in tail[: len(tail) // 2]:
-        tail = tail[tail.index("\n") + 1:]
-    cut = len(text) - len(head) - len(tail)
-    return f"{head.rstrip(chr(10))}\n[... {cut} characters cut here ...]\n{tail}"
+    """What the student printed in at most `limit` characters: the first and the last whole lines, the
+    middle replaced by a note of how much was cut (grader.inside.shorten). The first lines say what the code
+    printed first (where a student looks for their debug output), the last ones what it printed just
+    before it stopped."""
+    return keep_ends(text, limit, whole_lines=True)
