@@ -49,6 +49,8 @@ def keep_ends(text: str, limit: int, *, whole_lines: bool = False) -> str:
     head, tail = text[:(room + 1) // 2], text[len(text) - room // 2:]
     if whole_lines:
         head, tail = _whole_lines(head, tail)
+        if text[len(head):len(head) + 1] == "\n" and not head.endswith("\n"):
+            head += "\n"  # a head cut just before a line end is whole: the marker's line break shows it
     shown_head = head[:-1] if whole_lines and head.endswith("\n") else head  # its newline sets off the marker
     gap = "\n" if whole_lines else " "
     return f"{shown_head}{gap}{marker(len(text) - len(head) - len(tail))}{gap}{tail}"
