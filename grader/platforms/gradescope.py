@@ -30,6 +30,7 @@ from pathlib import Path
 
 from grader.batch.exports import gradescope_result
 from grader.batch.store import write_json
+from grader.inside.shorten import keep_ends
 from grader.platforms.archive import write_zip
 from grader.platforms.bundle import stage_common
 from grader.platforms.handout import copy_handout
@@ -104,7 +105,9 @@ def summary_html(result: dict, config: dict) -> str:
         lines.append(f"Isolation ({esc(str(isolation))}): {esc(cap(result.get('isolation_note'), 600))}")
     printed = result.get("student_output")
     if printed:
-        lines.append("What your code printed (the end of it):<pre>" + esc(cap(printed, 2000)) + "</pre>")
+        # its first and last lines, as the result keeps them (grader.sandbox.output), in Gradescope's room
+        lines.append("What your code printed (its first and last lines):<pre>"
+                     + esc(keep_ends(str(printed), 2000, whole_lines=True)) + "</pre>")
     return "\n".join(lines)
 
 

@@ -3,6 +3,7 @@ functions and on every caller; the four cutters it replaced (sandbox_wrong.old_c
 
 from __future__ import annotations
 
+import html
 import re
 from collections.abc import Callable
 
@@ -11,6 +12,7 @@ from sandbox_wrong import old_cutters
 
 from grader.inside import caps, shorten
 from grader.inside.shorten import keep_ends, keep_head
+from grader.platforms.gradescope import summary_html
 from grader.platforms.official import cap
 from grader.result_size import bound_result
 from grader.sandbox.output import cut_middle
@@ -146,3 +148,10 @@ def test_the_cutters_it_replaced_each_break_a_rule(old: Cut, whole_lines: bool, 
     assert broken(old, text, limit, whole_lines=whole_lines)
     assert broken(CUTS["keep_ends whole_lines" if whole_lines else "keep_ends"], text, limit,
                   whole_lines=whole_lines) == []
+
+
+def test_gradescope_shows_the_first_and_the_last_printed_lines() -> None:
+    printed = "".join(f"debug call {k}\n" for k in range(1, 1001))
+    page = summary_html({"week": 2, "status": "graded", "student_output": printed}, {"week": 2})
+    shown = html.unescape(page.split("<pre>", 1)[1].split("</pre>", 1)[0])
+    assert shown.startswith("debug call 1\n") and shown.endswith("debug call 1000\n") and len(shown) <= 2000
