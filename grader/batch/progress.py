@@ -11,6 +11,7 @@ import time
 from collections.abc import Callable
 from typing import TextIO
 
+from grader.inside.shorten import keep_head
 from grader.untrusted import printable
 
 COUNTED = ("graded", "invalid", "timeout", "crashed", "skipped")
@@ -94,8 +95,7 @@ class Progress:
         if self.quiet:
             return
         text = printable(text, multiline=False)
-        if len(text) > MESSAGE_CHARS:
-            text = text[:MESSAGE_CHARS] + f" [... {len(text) - MESSAGE_CHARS} more characters]"
+        text = keep_head(text, MESSAGE_CHARS)
         if self.tty and self.width:
             self.stream.write("\r" + " " * self.width + "\r")
             self.width = 0

@@ -4,12 +4,15 @@ functions and on every caller; the four cutters it replaced (sandbox_wrong.old_c
 from __future__ import annotations
 
 import html
+import io
 import re
 from collections.abc import Callable
 
 import pytest
 from sandbox_wrong import old_cutters
 
+from grader.batch import progress
+from grader.batch.progress import Progress
 from grader.inside import caps, shorten
 from grader.inside.shorten import keep_ends, keep_head
 from grader.platforms.gradescope import summary_html
@@ -155,3 +158,12 @@ def test_gradescope_shows_the_first_and_the_last_printed_lines() -> None:
     page = summary_html({"week": 2, "status": "graded", "student_output": printed}, {"week": 2})
     shown = html.unescape(page.split("<pre>", 1)[1].split("</pre>", 1)[0])
     assert shown.startswith("debug call 1\n") and shown.endswith("debug call 1000\n") and len(shown) <= 2000
+
+
+def test_a_batch_warning_line_is_cut_by_the_same_rule() -> None:
+    stream = io.StringIO()
+    message = "student-007: " + "x" * 5000
+    Progress(1, stream=stream, tty=False).message(message)
+    line = stream.getvalue().removesuffix("\n")
+    assert "\n" not in line and line == keep_head(message, progress.MESSAGE_CHARS)
+    assert broken(keep_head, message, progress.MESSAGE_CHARS) == []
