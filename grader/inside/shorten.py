@@ -12,7 +12,8 @@ The rules (tests/sandbox/test_shorten.py):
   their debug output, the last ones what ran just before the code stopped).
 - The marker is set off by spaces, or with ``whole_lines`` on a line of its own; there the cut moves to
   line ends where that loses at most half of what each side keeps (a line cut inside reads as a wrong
-  value), and a single long line is cut inside.
+  value), and a single long line is cut inside. The line break before the marker is the head's own line
+  end where it has one (shown, so not counted in N); the one after the marker is the marker's.
 - When even the marker does not fit, the text is cut to ``limit`` without one (a limit of 0 gives "").
 - Only strings are cut. What to do with a value that is not one (a worker's reply with a number where
   a message belongs) is the caller's rule: grader.inside.caps.clip gives its default.
