@@ -10,7 +10,7 @@ student's code does wrong on the way is raised as a grader.sandbox error and tur
 from __future__ import annotations
 
 import importlib
-from collections.abc import Callable
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -69,6 +69,29 @@ class Context:
         if self.serving is not None:  # a property's cases run batched: the answer comes from the batch
             return self.serving.answer(name, full)
         return self.session.call("probe", name=name, args=full, timeout=self.call_seconds)
+
+    def probe_each(self, name: str, many: Sequence[dict[str, Any]]) -> Iterator[Any]:
+        """Probe `name` once with each of `many` (its keyword arguments), all in one request: the answers in
+        order, each as `probe` gives it. When an answer is yielded, `last_probe` is its probe, and the
+        SandboxError `probe` would have raised for a probe is raised in its place, so a loop over the
+        answers fails, and a replay repeats, exactly as the loop with one `probe` a step. The per-probe
+        time limit is kept (StudentSession.probe_many). Only for probes that do not depend on each other:
+        the probes after the one that fails have run too (each builds the student's objects afresh, so
+        only module-level state in student code could tell)."""
+        fulls = [{"week": self.week, **args} for args in many]
+        if self.serving is not None or len(fulls) < 2:  # inside a batched property case: its own batches
+            for args in many:
+                yield self.probe(name, **args)
+            return
+        answers = self.session.probe_many([{"name": name, "args": full} for full in fulls],
+                                          timeout=self.call_seconds)
+        for k, full in enumerate(fulls):
+            self.last_probe = (name, full)
+            if k >= len(answers):  # probe_many stops early only after a timeout or a dead worker
+                raise RuntimeError(f"probe_many answered {len(answers)} of {len(fulls)} probes")
+            if isinstance(answers[k], SandboxError):
+                raise answers[k]
+            yield answers[k]
 
 
 # What the report can draw for a scenario run (grader/report/svg.py): the path in the world, the heading

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import random
+from collections.abc import Iterator
 
 from grader import reference as ref
 from grader import scenarios
@@ -134,10 +135,11 @@ def linearity(ctx: Context) -> Outcome:
     )
 
 
-def _distances(ctx: Context, raw: list[int]) -> list[float]:
-    return vector(
-        ctx.probe("ir_distances", raw=raw), 5, f"with raw values {raw} your get_ir_distances result"
-    )
+def _distances(ctx: Context, raws: list[list[int]]) -> Iterator[list[float]]:
+    """get_ir_distances of each set of five raw values, probed in one request, checked one by one."""
+    answers = ctx.probe_each("ir_distances", [{"raw": raw} for raw in raws])
+    for raw, answer in zip(raws, answers, strict=False):
+        yield vector(answer, 5, f"with raw values {raw} your get_ir_distances result")
 
 
 def ir_table(ctx: Context) -> Outcome:
@@ -145,11 +147,11 @@ def ir_table(ctx: Context) -> Outcome:
     divider = ref.ir_divider(ctx.spec)
     rows = list(ref.IR_TABLE)
     worst = 0.0
-    for start in range(0, len(rows), 5):
-        chunk = rows[start : start + 5]
-        chunk += [rows[-1]] * (5 - len(chunk))
-        raw = [int(math.floor(divider * v + 0.5)) for _, v in chunk]
-        for (d, v), r, got in zip(chunk, raw, _distances(ctx, raw), strict=False):
+    chunks = [rows[start : start + 5] for start in range(0, len(rows), 5)]
+    chunks = [chunk + [rows[-1]] * (5 - len(chunk)) for chunk in chunks]
+    raws = [[int(math.floor(divider * v + 0.5)) for _, v in chunk] for chunk in chunks]
+    for chunk, raw, answer in zip(chunks, raws, _distances(ctx, raws), strict=False):
+        for (d, v), r, got in zip(chunk, raw, answer, strict=False):
             err = abs(got - d)
             worst = max(worst, err / d)
             if err > max(0.05 * d, 0.003):
@@ -168,10 +170,10 @@ def ir_simulator(ctx: Context) -> Outcome:
     rng = random.Random(ctx.seed)
     distances = [0.04 + 0.005 * i for i in range(53)] + [rng.uniform(0.04, 0.3) for _ in range(7)]
     worst, at = 0.0, None
-    for start in range(0, len(distances), 5):
-        chunk = distances[start : start + 5]
-        raw = [ref.ir_raw(ctx.spec, d) for d in chunk]
-        for d, r, got in zip(chunk, raw, _distances(ctx, raw), strict=False):
+    chunks = [distances[start : start + 5] for start in range(0, len(distances), 5)]
+    raws = [[ref.ir_raw(ctx.spec, d) for d in chunk] for chunk in chunks]
+    for chunk, raw, answer in zip(chunks, raws, _distances(ctx, raws), strict=False):
+        for d, r, got in zip(chunk, raw, answer, strict=False):
             rel = abs(got - d) / d
             if rel > worst:
                 worst, at = rel, (d, r, got)

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import math
 import random
+from collections.abc import Iterator
+from typing import Any
 
 import numpy as np
 
@@ -138,16 +140,27 @@ def _frame_check(frame: str):
     return run
 
 
-def _u_ao(ctx: Context, distances: list, pose: list = POSE) -> tuple[np.ndarray, np.ndarray]:
-    """u_ao and the vectors from the robot to the student's own world-frame IR points."""
-    u_ao, vectors, _ = _avoid_once(ctx, distances, pose)
-    return u_ao, vectors
+def _u_aos(ctx: Context, readings: list[list]) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    """For each set of IR distances (at POSE): u_ao and the vectors from the robot to the student's own
+    world-frame IR points, probed in one request and checked one by one."""
+    answers = ctx.probe_each("avoid_obstacles", [_avoid_args(ctx, distances, POSE) for distances in readings])
+    for distances, answer in zip(readings, answers, strict=False):
+        u_ao, vectors, _ = _avoid_answer(answer, distances, POSE)
+        yield u_ao, vectors
+
+
+def _avoid_args(ctx: Context, distances: list, pose: list) -> dict:
+    """The avoid_obstacles probe's inputs: the readings, the pose, the week's v and the frames."""
+    return {"distances": distances, "pose": pose, "v": ctx.config.settings.v, "frames": frames(ctx, pose)}
 
 
 def _avoid_once(ctx: Context, distances: list, pose: list) -> tuple[np.ndarray, np.ndarray, dict]:
     """One AvoidObstacles.execute: u_ao, the vectors to the student's own IR points, and the raw answer."""
-    answer = ctx.probe("avoid_obstacles", distances=distances, pose=pose, v=ctx.config.settings.v,
-                       frames=frames(ctx, pose))
+    return _avoid_answer(ctx.probe("avoid_obstacles", **_avoid_args(ctx, distances, pose)), distances, pose)
+
+
+def _avoid_answer(answer: Any, distances: list, pose: list) -> tuple[np.ndarray, np.ndarray, dict]:
+    """The untrusted answer of one avoid_obstacles probe, validated: (u_ao, vectors, answer)."""
     if not isinstance(answer, dict):
         raise Mismatch("AvoidObstacles.execute gave no answer")
     where = f"with IR distances {', '.join(fmt(d) for d in distances)}"
@@ -182,8 +195,7 @@ _GAIN_PROBES = [
 def symmetric_gains(ctx: Context) -> Outcome:
     """The gains behind u_ao (solved from six readings): the same for sensors 1/5 and 2/4, not all 0."""
     rows, rhs = [], []
-    for distances in _GAIN_PROBES:
-        u_ao, vectors = _u_ao(ctx, distances)
+    for u_ao, vectors in _u_aos(ctx, _GAIN_PROBES):
         rows += [vectors[0], vectors[1]]
         rhs += [u_ao[0], u_ao[1]]
     gains, *_ = np.linalg.lstsq(np.array(rows), np.array(rhs), rcond=None)
@@ -215,11 +227,14 @@ def symmetric_gains(ctx: Context) -> Outcome:
 def points_away(ctx: Context) -> Outcome:
     """An obstacle close to one sensor turns u_ao away from it: away from the direction of that sensor's
     IR point as the student's own geometry puts it (a geometry mistake costs the geometry checks only)."""
-    free, vectors = _u_ao(ctx, [0.3] * 5)
+    readings = [[0.3] * 5]
     for i in range(5):
         distances = [0.3] * 5
         distances[i] = 0.06
-        u_ao, _ = _u_ao(ctx, distances)
+        readings.append(distances)
+    answers = _u_aos(ctx, readings)
+    free, vectors = next(answers)
+    for i, (u_ao, _) in enumerate(answers):
         direction = vectors[:, i] / max(float(np.linalg.norm(vectors[:, i])), 1e-12)
         towards = float(np.dot(u_ao - free, direction))
         if towards >= -1e-9:
