@@ -18,7 +18,8 @@ simiam or grader fails there too, but the process can still open any file its us
 from __future__ import annotations
 
 import functools
-import shutil
+import importlib.util
+import os
 import sys
 from pathlib import Path
 
@@ -83,15 +84,32 @@ def _installed_at(package: str) -> Path:
 
 def build_library(into: Path) -> Path:
     """Copy the exposed files into `into` (created), readable by any uid; return `into`."""
-    for relative in EXPOSED:
-        target = into / relative
-        target.parent.mkdir(parents=True, exist_ok=True, mode=0o755)
-        shutil.copyfile(source_of(relative), target)
-        target.chmod(0o644)
-    for folder in sorted({p for r in EXPOSED for p in (into / r).parents if into in p.parents}):
-        folder.chmod(0o755)
-    into.chmod(0o755)
+    write_library(into, {relative: source_of(relative).read_bytes() for relative in EXPOSED})
     return into
+
+
+def write_library(into: Path, sources: dict[str, bytes], *, bytecode: bool = False) -> None:
+    """Write `sources` (relative path -> bytes) into `into`, every folder and file readable by any uid
+    (the worker runs as another one). With `bytecode`, a checked-hash .pyc beside each source: Python
+    re-reads the source and checks its hash before it uses one (grader.sandbox.library)."""
+    if bytecode:
+        import py_compile  # only when a shared library is built: not on every grading process's import
+    for relative, data in sources.items():
+        target = into / relative
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_bytes(data)
+        if bytecode:
+            py_compile.compile(str(target), cfile=bytecode_of(target), doraise=True, optimize=0,
+                               invalidation_mode=py_compile.PycInvalidationMode.CHECKED_HASH)
+    for folder, _dirs, files in os.walk(into):
+        os.chmod(folder, 0o755)
+        for name in files:
+            os.chmod(os.path.join(folder, name), 0o644)
+
+
+def bytecode_of(source: Path | str) -> str:
+    """Where a worker without -O looks for the bytecode of `source`."""
+    return importlib.util.cache_from_source(str(source), optimization="")
 
 
 def installed_copies(paths: list[str]) -> list[str]:

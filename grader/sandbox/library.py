@@ -85,7 +85,7 @@ def _ensure(root: str, key: str, sources: dict[str, bytes]) -> str:
     os.makedirs(root, mode=0o700, exist_ok=True)
     building = tempfile.mkdtemp(prefix=f".{key}-", dir=root)
     try:
-        _write(building, sources)
+        exposed.write_library(Path(building), sources, bytecode=True)
         try:
             os.rename(building, final)
         except OSError:  # another process finished first, or a damaged library is in the way
@@ -103,31 +103,10 @@ def _ensure(root: str, key: str, sources: dict[str, bytes]) -> str:
     return final
 
 
-def _write(into: str, sources: dict[str, bytes]) -> None:
-    """The sources and their bytecode (for a worker without -O), readable by any uid, in `into`."""
-    import py_compile  # only when a library is built: not on every grading process's import
-
-    for relative, data in sources.items():
-        target = os.path.join(into, relative)
-        os.makedirs(os.path.dirname(target), exist_ok=True)
-        with open(target, "wb") as file:
-            file.write(data)
-        py_compile.compile(target, cfile=_bytecode_of(target), doraise=True, optimize=0,
-                           invalidation_mode=py_compile.PycInvalidationMode.CHECKED_HASH)
-    for folder, _dirs, files in os.walk(into):
-        os.chmod(folder, 0o755)
-        for name in files:
-            os.chmod(os.path.join(folder, name), 0o644)
-
-
-def _bytecode_of(source: str) -> str:
-    return importlib.util.cache_from_source(source, optimization="")
-
-
 def _intact(folder: str, sources: dict[str, bytes]) -> bool:
     """True if `folder` holds exactly these sources and a bytecode file for each, nothing else."""
     paths = {relative: os.path.join(folder, relative) for relative in sources}
-    expected = {*paths.values(), *map(_bytecode_of, paths.values())}
+    expected = {*paths.values(), *map(exposed.bytecode_of, paths.values())}
     try:
         found = {os.path.join(d, f) for d, _dirs, files in os.walk(folder) for f in files}
         if found != expected:

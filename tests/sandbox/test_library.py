@@ -93,13 +93,13 @@ def test_a_damaged_library_is_rebuilt(cache):
 
 def test_a_library_another_process_finished_first_is_used(cache, monkeypatch):
     """Two grading processes build the same library at once: the one that renames second keeps the first's."""
-    real_write = library._write
+    real_write = exposed.write_library
 
-    def racing(into: str, sources: dict) -> None:
-        real_write(into, sources)
+    def racing(into: Path, sources: dict, *, bytecode: bool = False) -> None:
+        real_write(into, sources, bytecode=bytecode)
         shutil.copytree(into, os.path.join(os.path.dirname(into), library.library_key(sources)))
 
-    monkeypatch.setattr(library, "_write", racing)
+    monkeypatch.setattr(exposed, "write_library", racing)
     folder = library.shared_library()
     assert [p.name for p in cache.iterdir()] == [folder.name]  # nothing half-built left behind
     assert library._intact(str(folder), _sources())
