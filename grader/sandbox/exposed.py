@@ -46,7 +46,7 @@ EXPOSED: tuple[str, ...] = (
     *sorted(f"simiam/course/weeks/{p.name}"  # every declared week (adding a week is adding a file)
             for p in (Path(simiam.__file__).parent / "course" / "weeks").glob("week*.py")),
     "simiam/laps.py",                  # week 6's declaration holds its lap gate (no student block)
-    "simiam/names.py",                 # a misspelt setting's error (imported only then: simiam.course.week)
+    "simiam/names.py",                 # "did you mean": a misspelt setting, state or event name
     "simiam/robot/__init__.py",
     "simiam/robot/quickbot.py",
     "simiam/signals.py",               # LocalBrain reads the debug signals with it

@@ -18,6 +18,7 @@ from types import FrameType
 from simiam.control.controller import Controller, Inputs
 from simiam.control.norm import norm
 from simiam.control.pose import Pose2D
+from simiam.names import likely_meant, shown
 
 
 @dataclass
@@ -54,18 +55,15 @@ def _caller_location() -> str:
 
 def _unknown(kind: str, name: object, known: list[str]) -> UnknownNameError:
     """The error for a name that is not a state (or event): where, what, and the closest known name."""
-    shown = repr(name) if len(repr(name)) <= 80 else repr(name)[:77] + "..."
     if not isinstance(name, str):
         article = "an" if kind[0] in "aeiou" else "a"
         example = f" such as {known[0]!r}" if known else ""
-        text = f"{article} {kind} name is a string{example}, not {type(name).__name__} {shown}"
+        text = f"{article} {kind} name is a string{example}, not {type(name).__name__} {shown(name)}"
     else:
-        text = f"no {kind} exists with name {shown} (the {kind}s are: {', '.join(known)})"
-        import difflib  # only for this message: not imported by every sandboxed worker's start
-
-        close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
-        if close:
-            text += f"; did you mean {close[0]!r}?"
+        text = f"no {kind} exists with name {shown(name)} (the {kind}s are: {', '.join(known)})"
+        meant = likely_meant(name, known)
+        if meant:
+            text += f"; did you mean {meant!r}?"
     return UnknownNameError(_caller_location() + text)
 
 
