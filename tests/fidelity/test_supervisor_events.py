@@ -117,6 +117,13 @@ def test_a_name_that_is_not_a_string_is_refused_clearly():
         sup.check_event(["at_goal"])
 
 
+def test_an_event_in_other_capitals_is_suggested_even_where_difflib_finds_it_too_far():
+    """'AT_OBSTACLE' is only 0.09 like 'at_obstacle' by difflib's ratio, under its 0.6 cutoff: the capitals alone differ."""
+    with pytest.raises(UnknownNameError) as err:
+        _supervisor().check_event("AT_OBSTACLE")
+    assert "did you mean 'at_obstacle'?" in str(err.value)
+
+
 def test_a_misspelt_state_in_the_students_file_is_named_with_its_line(tmp_path):
     """The original printed "no state exists with name ..." and kept the old controller running."""
     folder = mistakes.build("submissions", "week5_state_typo", tmp_path, 5)
