@@ -118,7 +118,8 @@ def test_a_name_that_is_not_a_string_is_refused_clearly():
 
 
 def test_an_event_in_other_capitals_is_suggested_even_where_difflib_finds_it_too_far():
-    """'AT_OBSTACLE' is only 0.09 like 'at_obstacle' by difflib's ratio, under its 0.6 cutoff: the capitals alone differ."""
+    """'AT_OBSTACLE' is only 0.09 like 'at_obstacle' by difflib's ratio, under its 0.6 cutoff: the
+    capitals alone differ."""
     with pytest.raises(UnknownNameError) as err:
         _supervisor().check_event("AT_OBSTACLE")
     assert "did you mean 'at_obstacle'?" in str(err.value)
