@@ -257,12 +257,14 @@ def _grade(job: _Job, started: _Started) -> dict:
         except SandboxError as exc:
             job.extra["isolation"] = session.isolation
             job.extra["isolation_note"] = session.isolation_note
+            job.extra["numerics"] = session.numerics
             message = f"your code could not be loaded at all: {exc.message}"
             return _invalid(job.week, job.seed, job.submission, job.selected, message, job.extra)
         for file, texts in _load_problems(job.week, loaded).items():
             problems.setdefault(file, []).extend(texts)
         job.extra["isolation"] = session.isolation
         job.extra["isolation_note"] = session.isolation_note
+        job.extra["numerics"] = session.numerics  # which BLAS kernel and SIMD level ran the student's code
         if not loaded.get("modules"):
             message = "none of your files could be loaded: " + "; ".join(
                 t for v in problems.values() for t in v

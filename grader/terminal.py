@@ -98,6 +98,9 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
     note = str(result.get("isolation_note") or "")
     if note.startswith(LOCAL_ONLY):
         p.wrapped(note, "  ")
+    numerics = result.get("numerics")
+    if isinstance(numerics, dict) and numerics.get("note"):  # not official grading's numeric environment
+        p.wrapped(f"numerics: {numerics['note']}", "  ")
     for note in result.get("notices") or []:
         p.wrapped(f"note: {note}", "  ")
     if not result.get("hidden"):

@@ -1,2 +1,9 @@
 """Shared by every test area: this folder is on sys.path, so `mistakes` (wrong versions built from
 solutions/ plus a small patch) imports from tests/grader, tests/course and tests/fidelity alike."""
+
+import sys
+
+# Before any test module imports numpy: the numeric environment every run of controller code uses (one
+# BLAS kernel, one thread, one SIMD level; simiam.numerics). pytest's own plugins do not import numpy.
+assert "numpy" not in sys.modules, "numpy was imported before simiam could pin the numeric environment"
+import simiam  # noqa: E402,F401

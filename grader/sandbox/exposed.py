@@ -47,6 +47,7 @@ EXPOSED: tuple[str, ...] = (
             for p in (Path(simiam.__file__).parent / "course" / "weeks").glob("week*.py")),
     "simiam/laps.py",                  # week 6's declaration holds its lap gate (no student block)
     "simiam/names.py",                 # "did you mean": a misspelt setting, state or event name
+    "simiam/numerics.py",              # simiam's import pins the numeric environment; the worker reports it
     "simiam/robot/__init__.py",
     "simiam/robot/quickbot.py",
     "simiam/signals.py",               # LocalBrain reads the debug signals with it

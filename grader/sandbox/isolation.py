@@ -28,6 +28,7 @@ from pathlib import Path
 
 from grader.sandbox.exposed import WORKER, build_library, installed_copies
 from grader.sandbox.library import shared_library
+from simiam import numerics
 
 BWRAP = "bwrap"
 SUBPROCESS = "subprocess"
@@ -223,9 +224,10 @@ def _private_env() -> bool:
 
 
 def clean_env() -> dict[str, str]:
-    """The worker's whole environment: nothing inherited from the grader (no tokens, no paths)."""
-    return {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1",
-            "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+    """The worker's whole environment: nothing inherited from the grader (no tokens, no paths) but the
+    numeric environment simiam.numerics pins before the worker's numpy loads (one BLAS kernel, one thread,
+    one SIMD level: the same wheel speeds from the same code on every CPU)."""
+    return {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8", **numerics.plan()}
 
 
 def worker_library(mode: str, beside: Path) -> Path:

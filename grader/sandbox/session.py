@@ -40,6 +40,7 @@ from grader.sandbox.limits import Limits
 from grader.sandbox.runner import RequestTooLarge, WorkerProcess
 from grader.sandbox.stuck import Stuck, find_stuck
 from grader.sandbox.workdir import WorkCopy
+from simiam import numerics
 
 _KEEP_OUTPUTS = 8  # output of the last workers of a session shown in feedback
 PROBES_PER_REQUEST = 64  # a property check's cases fit in one request (25 or 50 of them, mostly)
@@ -67,6 +68,7 @@ class StudentSession:
         self._load: dict | None = None
         self._load_death: WorkerDied | None = None
         self.isolation_note = self._base_note = isolation.describe(self.isolation)
+        self.numerics: dict[str, object] = numerics.checked(None)  # what the worker reports when it starts
         self._spawned: float | None = None  # when a worker was spawned that is not waited for yet
         self.seconds_used = 0.0      # wall time of calls, counted against limits.total_seconds
         self.calls = 0
@@ -169,6 +171,7 @@ class StudentSession:
         self.start_seconds.append(time.monotonic() - began)
         refused = self._worker.ready.get("refused_limits")
         self.isolation_note = with_refused_limits(self._base_note, refused)  # the same after a restart
+        self.numerics = numerics.checked(self._worker.ready.get("numerics"))
         try:
             value = self._request("load", {}, None)
         except (WorkerDied, StudentTimeout) as exc:

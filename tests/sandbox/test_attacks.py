@@ -24,6 +24,7 @@ from grader.sandbox.errors import StudentError, StudentTimeout, WorkerDied
 from grader.sandbox.isolation import BWRAP, SUBPROCESS
 from grader.sandbox.limits import Limits
 from grader.sandbox.runner import _uid_alive
+from simiam import numerics
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -296,8 +297,8 @@ def test_the_worker_sees_no_secrets_and_no_repository(open_session, mode, monkey
              str(REPO / "grader" / "hidden"), str(REPO / "grader" / "checks"), str(REPO / "reports")]
     seen = attack(session, paths=paths)
     assert "SIMIAM_GRADER_SECRET" not in seen["environ"] and "s3cret" not in seen["cmdline"]
-    assert set(seen["environ"]) <= {"PATH", "HOME", "LANG", "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS",
-                                    "MKL_NUM_THREADS"}
+    # the numeric environment simiam.numerics pins (kernel, threads, SIMD level) and nothing else
+    assert set(seen["environ"]) <= {"PATH", "HOME", "LANG", *numerics.PINNED_VARIABLES, numerics.OVERRIDE}
     if AS_ROOT:
         assert seen["uid"] != 0
     if mode == BWRAP:
