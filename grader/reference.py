@@ -190,3 +190,44 @@ __all__ = [
     "travel",
     "wrap",
 ]
+
+
+def dot(u: Sequence[float], v: Sequence[float]) -> float:
+    """u . v summed left to right in plain float arithmetic: the same last bit on every CPU (numpy's `@`
+    hands it to the BLAS kernel the CPU picks, some of which fuse the multiply and the add)."""
+    total = 0.0
+    for a, b in zip(u, v, strict=True):
+        total += a * b
+    return total
+
+
+def least_squares(rows: Sequence[Sequence[float]], rhs: Sequence[float]) -> list[float]:
+    """x minimising |A x - b| for A = rows, b = rhs, solved exactly in rationals (the normal equations
+    AᵀA x = Aᵀb by Gauss-Jordan elimination), then rounded once: no BLAS, so every CPU finds the same x.
+    Where AᵀA is singular the free unknowns are 0 (a least-squares solution, not the least-norm one)."""
+    from fractions import Fraction
+
+    a = [[Fraction(value) for value in row] for row in rows]
+    b = [Fraction(value) for value in rhs]
+    n = len(a[0]) if a else 0
+    normal = [[sum((row[i] * row[j] for row in a), Fraction(0)) for j in range(n)]
+              + [sum((row[i] * bk for row, bk in zip(a, b, strict=True)), Fraction(0))] for i in range(n)]
+    pivots: list[int] = []
+    r = 0
+    for col in range(n):
+        pivot = next((k for k in range(r, n) if normal[k][col] != 0), None)
+        if pivot is None:
+            continue
+        normal[r], normal[pivot] = normal[pivot], normal[r]
+        lead = normal[r][col]
+        normal[r] = [value / lead for value in normal[r]]
+        for k in range(n):
+            if k != r and normal[k][col] != 0:
+                factor = normal[k][col]
+                normal[k] = [x - factor * y for x, y in zip(normal[k], normal[r], strict=True)]
+        pivots.append(col)
+        r += 1
+    x = [Fraction(0)] * n
+    for row, col in zip(normal, pivots, strict=False):
+        x[col] = row[n]
+    return [float(value) for value in x]
