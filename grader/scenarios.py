@@ -85,7 +85,8 @@ def run(
         def until(rec: StepRecord) -> bool:  # the TRUE position, never the student's estimate
             return math.dist(rec.pose[:2], goal) < goal_radius
     trace = sim.run(seconds, until=until, stuck=(StudentTimeout,))
-    trace.meta = {"check_label": label, "seed": ctx.seed}
+    trace.meta = {"check_label": label, "seed": ctx.seed,
+                  "numerics": getattr(ctx.session, "numerics", None)}  # what ran the student's code
     result.trace = trace
     ending = trace.ending
     assert ending is not None  # run() always says how it ended

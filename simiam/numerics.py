@@ -245,12 +245,15 @@ def checked(value: object) -> dict[str, object]:
     if not isinstance(value, dict):
         return {"official": False, "note": f"the worker did not report its numeric environment: {DIFFERS}"}
     out: dict[str, object] = {}
+    malformed = False
     for key, cap in _TEXT_FIELDS.items():
         text = value.get(key)
+        malformed |= not isinstance(text, str) or len(text) > cap
         out[key] = text[:cap] if isinstance(text, str) else ""
     threads = value.get("threads")
+    malformed |= threads is not None and not (type(threads) is int and 0 <= threads < 10_000)
     out["threads"] = threads if type(threads) is int and 0 <= threads < 10_000 else None
-    out["official"] = value.get("official") is True and not out["note"]
+    out["official"] = value.get("official") is True and not out["note"] and not malformed
     if not out["official"] and not out["note"]:
         out["note"] = f"the worker's numeric environment is not the official one: {DIFFERS}"
     return out

@@ -72,6 +72,9 @@ def _bootstrap(config: dict) -> None:
             importlib.import_module(name)
         except ImportError:
             pass  # a missing optional module shows up later as a clear error
+    from grader.inside.worker_loop import numerics_report
+
+    config["numerics"] = numerics_report()  # before the uid drop and before student code
     if config.get("uid") is not None:
         _drop_privileges(int(config["uid"]), int(config["gid"]))
     _die_with_parent(config.get("parent"))

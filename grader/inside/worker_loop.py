@@ -130,8 +130,10 @@ def _probe_names(module: Any) -> frozenset[str]:
     return frozenset(names)
 
 
-def _numerics() -> object:
-    """The numeric environment this worker's numpy loaded with (simiam.numerics), or why it is unknown."""
+def numerics_report() -> object:
+    """The numeric environment this worker's numpy loaded with (simiam.numerics), or why it is unknown.
+    Read in the bootstrap, before the uid drop (it reads /proc and may import codecs the dropped uid
+    cannot read) and before any student code; sent in the ready message."""
     try:
         from simiam.numerics import describe
 
@@ -156,7 +158,7 @@ def serve(config: dict) -> None:
                                                   "thread": threading.get_ident(),
                                                   "seccomp": bool(config.get("seccomp")),
                                                   "refused_limits": config.get("refused_limits", []),
-                                                  "numerics": _numerics()}})
+                                                  "numerics": config.get("numerics")}})
     reader = LineReader()
     while True:
         line = reader.pop_line()

@@ -260,6 +260,17 @@ def _check_view(check: dict, traces: dict, replays: str, hrefs: dict[str, str], 
     }
 
 
+def _numerics(value: object) -> dict[str, str]:
+    """The numeric environment line: the BLAS kernel that ran the student's code, and, where it is not
+    official grading's, why and what that means (simiam.numerics)."""
+    if not isinstance(value, dict):
+        return {"numerics": "", "numerics_note": ""}
+    kernel = str(value.get("kernel") or "unknown BLAS kernel")
+    official = " (official grading's)" if value.get("official") is True else ""
+    return {"numerics": f"{kernel}, {value.get('threads') or '?'} thread{official}",
+            "numerics_note": str(value.get("note") or "")}
+
+
 def _summary(result: dict, checks: list[dict]) -> dict:
     hidden = result.get("hidden")
     isolation = result.get("isolation") or result.get("sandbox") or result.get("sandbox_mode")
@@ -286,6 +297,7 @@ def _summary(result: dict, checks: list[dict]) -> dict:
             "submission": str(result.get("submission", "") or ""), "isolation": str(isolation or ""),
             "hidden": bool(hidden), "visibility_note": note, "counts": counts,
             "isolation_note": str(result.get("isolation_note", "") or ""),
+            **_numerics(result.get("numerics")),
             "problems": [str(t) if str(t).startswith(str(f)) else f"{f}: {t}"
                          for f, v in problems.items() for t in (v if isinstance(v, list) else [v])],
             "notices": [str(n) for n in notices],
