@@ -103,6 +103,9 @@ def summary_html(result: dict, config: dict) -> str:
     isolation = result.get("isolation")
     if isolation:
         lines.append(f"Isolation ({esc(str(isolation))}): {esc(cap(result.get('isolation_note'), 600))}")
+    numerics = result.get("numerics")
+    if isinstance(numerics, dict) and numerics.get("note"):  # the platform's CPU could not be pinned
+        lines.append("Numerics: " + esc(cap(numerics.get("note"), 600)))
     printed = result.get("student_output")
     if printed:
         # its first and last lines, as the result keeps them (grader.sandbox.output), in Gradescope's room

@@ -133,6 +133,9 @@ def results_json(result: dict) -> dict:
     lines = [f"{result.get('score', 0):g} of {max_score:g} points"]
     lines += [f"note: {cap(n, 500)}" for n in (result.get("notices") or [])[:20]]
     lines.append(f"isolation: {result.get('isolation')}: {result.get('isolation_note') or ''}".strip())
+    numerics = result.get("numerics")
+    if isinstance(numerics, dict) and numerics.get("note"):  # the platform's CPU could not be pinned
+        lines.append(f"numerics: {cap(numerics.get('note'), 600)}")
     return {"gradable": True, "score": min(1.0, max(0.0, score)), "message": "\n".join(lines),
             "output": cap(result.get("student_output") or "", MESSAGE_CHARS), "tests": tests}
 
