@@ -61,7 +61,17 @@ def machine_line(sandbox: str) -> str:
     shared = f"{cores} cores" if usable == cores else f"{cores} cores, {usable} usable"
     return (f"machine: {cpu_model()} ({shared}), {platform.system()} {platform.machine()}, "
             f"{platform.python_implementation()} {platform.python_version()}; sandbox: {sandbox}; "
-            f"load average before {_load_text(load_average())} (1, 5, 15 min)")
+            f"numerics: {_numerics_text()}; load average before {_load_text(load_average())} (1, 5, 15 min)")
+
+
+def _numerics_text() -> str:
+    """The BLAS kernel, threads and numpy SIMD level this process runs (simiam.numerics), in a few words."""
+    from simiam.numerics import describe
+
+    seen = describe()
+    official = "official" if seen["official"] else "NOT official"
+    kernel = seen["kernel"] or "no OpenBLAS"
+    return f"{kernel}, {seen['threads']} thread, numpy {seen['numpy_simd']} ({official})"
 
 
 def load_after_line() -> str:
