@@ -6,7 +6,9 @@ case runs, so the probes can go together: each case is first run up to its first
 recorded instead of sent (`NeedsProbe` stops the case there); the recorded probes of all cases go in one
 `probe_many` request, whose answers the worker streams back one by one (StudentSession.probe_many); then
 the cases run again with their answers served from that batch. A case that needs a further probe (week 2's
-linearity asks three) stops there again, and its next probe goes with the next batch.
+linearity asks three) stops there again, and its next probe goes with the next batch. The answers are kept
+until the cases are done, so what all the rounds keep together is bounded by one AnswerBudget
+(grader.inside.answer_bounds): an answer beyond it is a BadValue of its case.
 
 What the checks see is what the loop `for inputs in cases: case(ctx, **inputs)` gives: the first case
 that fails in that order, with its exception, the same answers (the worker runs the same probes in the
@@ -25,6 +27,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from grader.checks import Context, Mismatch
+from grader.inside.answer_bounds import AnswerBudget
 from grader.inside.protocol import encode_request
 from grader.sandbox.errors import SandboxError
 
@@ -68,7 +71,8 @@ def _same(asked: tuple[str, dict], again: tuple[str, dict]) -> bool:
 
 
 def _copy(value: Any) -> Any:
-    """A fresh copy of a JSON value (a case may change the lists it was given)."""
+    """A fresh copy of a JSON value (a case may change the lists it was given). Recursive: every answer
+    is at most MAX_DEPTH deep (grader.inside.answer_bounds, checked where the runner reads it)."""
     if isinstance(value, list):
         return [_copy(v) for v in value]
     if isinstance(value, dict):
@@ -83,6 +87,7 @@ def run_cases(ctx: Context, case: Callable[..., None], cases: Sequence[dict[str,
     propagates, as from the plain loop. The first `fresh` cases start with `ctx.last_probe = None` (the
     fixed examples do, grader.properties._one)."""
     served = [Served() for _ in cases]
+    budget = AnswerBudget()  # every round's answers are kept until the cases are done: one budget for all
     passed = [False] * len(cases)
     first_open = 0  # every case before it has passed
     try:
@@ -115,7 +120,7 @@ def run_cases(ctx: Context, case: Callable[..., None], cases: Sequence[dict[str,
                 return None
             requests = [served[i].asked[len(served[i].answers)] for i in waiting]
             answers = ctx.session.probe_many([{"name": name, "args": args} for name, args in requests],
-                                             timeout=ctx.call_seconds)
+                                             timeout=ctx.call_seconds, budget=budget)
             if not answers:
                 raise RuntimeError("probe_many answered nothing")
             for i, answer in zip(waiting, answers, strict=False):  # fewer answers after a timeout

@@ -19,6 +19,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+from grader.inside.answer_bounds import MAX_ANSWER_BYTES, OutOfBounds, weigh
 from grader.inside.protocol import LineReader, NotJSON, ProtocolError, decode_request, encode, to_json
 
 
@@ -96,8 +97,11 @@ class _Worker:
                                                      "message": f"unknown op {request.get('op')!r}"}}
         try:
             value = to_json(op(request))
+            weigh(value)  # the grader takes nothing larger: say so here, in words, rather than be killed
         except NotJSON as exc:
             return {"id": rid, "ok": False, "error": {"type": "NotJSON", "message": str(exc)}}
+        except OutOfBounds as exc:
+            return {"id": rid, "ok": False, "error": {"type": "TooLarge", "message": str(exc)}}
         except BaseException as exc:  # noqa: BLE001 - SystemExit, KeyboardInterrupt and custom ones too
             return {"id": rid, "ok": False, "error": self.describe(exc)}
         return {"id": rid, "ok": True, "value": value}
@@ -192,6 +196,10 @@ def _flush_student_output() -> None:
 
 def _send(fd: int, message: dict) -> None:
     data = encode(message)
+    if len(data) > MAX_ANSWER_BYTES:  # within the bounds of values and text, but long numbers or escapes
+        too_large = f"a value of {len(data)} bytes as JSON (at most {MAX_ANSWER_BYTES})"
+        data = encode({"id": message.get("id"), "ok": False,
+                       "error": {"type": "TooLarge", "message": too_large}})
     while data:
         written = os.write(fd, data)
         data = data[written:]

@@ -53,6 +53,7 @@ EXPOSED: tuple[str, ...] = (
     "simiam/signals.py",               # LocalBrain reads the debug signals with it
     "grader/__init__.py",
     "grader/inside/__init__.py",       # the worker's own package: imports nothing trusted (grader/inside/)
+    "grader/inside/answer_bounds.py",
     "grader/inside/caps.py",
     "grader/inside/probes.py",
     "grader/inside/probes_week5.py",

@@ -1,11 +1,13 @@
 """One running worker: start it (per an isolation plan), exchange messages with deadlines, kill its tree.
 
 The grader talks to the worker over two pipes passed as extra file descriptors (never stdin/stdout/stderr).
-Every response must carry the id of the pending request, fit the size cap and parse as strict JSON; anything
-else is a protocol violation and the worker is killed. A third pipe carries only stack dumps: when a call
-times out, the runner sends SIGUSR1 (the worker registered faulthandler for it before any student code ran),
-keeps what arrives within a bounded wait in `stack_dump` (untrusted bytes for grader.sandbox.stuck), then
-kills. This costs nothing per call; a timeout costs about 20 ms more (at most 0.5 s if the dump never comes).
+Every response must carry the id of the pending request, parse as strict JSON and stay within the bounds of
+one answer (grader.inside.answer_bounds: bytes, depth, values, text), checked before anything else reads
+it; anything else is a protocol violation and the worker is killed. A third pipe carries only stack dumps:
+when a call times out, the runner sends SIGUSR1 (the worker registered faulthandler for it before any student
+code ran), keeps what arrives within a bounded wait in `stack_dump` (untrusted bytes for
+grader.sandbox.stuck), then kills. This costs nothing per call; a timeout costs about 20 ms more (at most
+0.5 s if the dump never comes).
 
 Killing covers the whole tree: the bubblewrap PID namespace dies with its init; in any mode a dedicated uid is
 swept with kill(-1) from a child that has become that uid, which reaches processes that called setsid or
@@ -22,6 +24,7 @@ import subprocess
 import sys
 import time
 
+from grader.inside.answer_bounds import MAX_ANSWER_BYTES, OutOfBounds, check_message
 from grader.inside.protocol import MAX_MESSAGE, LineReader, ProtocolError, decode, encode_request
 from grader.sandbox.errors import StudentTimeout, WorkerDied
 from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
@@ -67,7 +70,7 @@ class WorkerProcess:
             for fd in (req_r, resp_w, out_w, dump_w):
                 os.close(fd)
         self.output = CappedOutput(out_r, output_cap)
-        self._reader = LineReader()
+        self._reader = LineReader(MAX_ANSWER_BYTES)  # answers are smaller than requests may be
         self._answers = select.poll()  # kept: one poll object for every answer, not one per wait
         self._answers.register(self._resp_r, select.POLLIN)
         self._next_id = 1
@@ -139,8 +142,11 @@ class WorkerProcess:
             if line is not None:
                 try:
                     message = decode(line)
+                    check_message(message)  # before any trusted code walks it (answer_bounds)
                 except ProtocolError as exc:
                     self._die(f"it broke the protocol ({exc})")
+                except OutOfBounds as exc:
+                    self._die(f"it broke the protocol (an answer holding {exc})")
                 if message.get("id") != rid or type(message.get("ok")) is not bool:
                     self._die("it sent an answer that does not match the question")
                 return message

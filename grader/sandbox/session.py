@@ -23,6 +23,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from grader.inside.answer_bounds import AnswerBudget, OutOfBounds
 from grader.inside.caps import (
     FILE_CHARS,
     MAX_ERRORS,
@@ -39,6 +40,7 @@ from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeo
 from grader.sandbox.limits import Limits
 from grader.sandbox.runner import RequestTooLarge, WorkerProcess
 from grader.sandbox.stuck import Stuck, find_stuck
+from grader.sandbox.validate import BadValue
 from grader.sandbox.workdir import WorkCopy
 from simiam import numerics
 
@@ -99,9 +101,14 @@ class StudentSession:
         self._ensure_worker()
         return self._request(op, fields, timeout)
 
-    def probe_many(self, probes: list[dict], timeout: float | None = None) -> list[Any]:
+    def probe_many(self, probes: list[dict], timeout: float | None = None,
+                   budget: AnswerBudget | None = None) -> list[Any]:
         """Run several probes ({"name", "args"} each) in order in one request; per probe, its JSON value
         (untrusted, like call's) or the SandboxError call would have raised for it.
+
+        The answers kept weigh at most `budget` in all (a fresh AnswerBudget if none is given; a property
+        check passes one for all its rounds): an answer that does not fit is a BadValue instead, and is
+        dropped as soon as it is read (grader.inside.answer_bounds).
 
         The worker answers each probe as soon as it is done, and each answer gets the per-call limit
         counted from the answer before it: a probe that hangs times out as itself, and the worker is
@@ -111,13 +118,14 @@ class StudentSession:
         """
         if not probes:
             return []
+        budget = budget or AnswerBudget()
         results: list[Any] = []
         todo = [probes[i:i + PROBES_PER_REQUEST] for i in range(0, len(probes), PROBES_PER_REQUEST)]
         while todo:
             chunk = todo.pop(0)
             try:
                 self._ensure_worker()
-                results += self._stream(chunk, timeout)
+                results += self._stream(chunk, timeout, budget)
             except RequestTooLarge:  # nothing was sent: the same probes in two requests
                 half = len(chunk) // 2
                 todo[:0] = [chunk[:half], chunk[half:]]
@@ -224,7 +232,7 @@ class StudentSession:
             return response.get("value")
         raise _student_error(response.get("error"))
 
-    def _stream(self, probes: list[dict], timeout: float | None) -> list[Any]:
+    def _stream(self, probes: list[dict], timeout: float | None, budget: AnswerBudget) -> list[Any]:
         """One `probe_many` request and its answers, each read with its own limit (see probe_many)."""
         worker = self._worker
         assert worker is not None
@@ -251,7 +259,8 @@ class StudentSession:
                 return [*results, exc]
             finally:
                 self.seconds_used += time.monotonic() - began
-            results.append(response.get("value") if response["ok"] else _student_error(response.get("error")))
+            results.append(_kept(response.get("value"), budget) if response["ok"]
+                           else _student_error(response.get("error")))
         try:
             worker.no_more_answers()
         except WorkerDied as exc:  # the extra came with the last probe: that probe broke the protocol
@@ -324,6 +333,14 @@ def _timeout(why: str, stuck: Stuck | None) -> StudentTimeout:
     return StudentTimeout(message, stuck.file, stuck.line, stuck.function)
 
 
+def _kept(value: Any, budget: AnswerBudget) -> Any:
+    """`value` if it fits in what the grader keeps of this request's answers, else a BadValue saying so."""
+    try:
+        return budget.take(value)
+    except OutOfBounds as exc:
+        return BadValue(f"your code returned {exc}")
+
+
 def _student_error(error: Any) -> StudentError:
     """Rebuild a student error from the worker's (untrusted) description, keeping only sane fields."""
     if not isinstance(error, dict):
@@ -335,6 +352,9 @@ def _student_error(error: Any) -> StudentError:
     if kind == "NotJSON":
         message = f"your code returned {message}, which cannot be sent to the grader " \
                   "(only numbers, strings, lists and dicts can)"
+        kind = ""
+    elif kind == "TooLarge":  # grader.inside.answer_bounds
+        message = f"your code returned {message}, more than the grader takes from one call"
         kind = ""
     raw = error.get("frames")
     frames = [_frame(f) for f in (raw if isinstance(raw, list) else [])[-20:]]

@@ -49,7 +49,7 @@ class FakeSession:
         self.requests.append([(fields["name"], fields["args"])])
         return self._one(fields["name"], fields["args"])
 
-    def probe_many(self, probes: list[dict], timeout: float | None = None) -> list[Any]:
+    def probe_many(self, probes: list[dict], timeout: float | None = None, budget: Any = None) -> list[Any]:
         self.requests.append([(p["name"], p["args"]) for p in probes])
         out: list[Any] = []
         for p in probes:

@@ -33,6 +33,19 @@ def make_submission(base: Path, attack: str) -> Path:
     return folder
 
 
+def graded_attack(base: Path, name: str, **fill: object) -> Path:
+    """solutions/week2 with tests/data/attacks/graded/<name>.patch applied; __KEY__ placeholders filled in."""
+    import mistakes
+
+    folder = mistakes.build("attacks/graded", name, base, 2)
+    for file in mistakes.read_mistake(mistakes.mistake_path("attacks/graded", name)).files:
+        text = (folder / file).read_text()
+        for key, value in fill.items():
+            text = text.replace(f"__{key.upper()}__", str(value))
+        (folder / file).write_text(text)
+    return folder
+
+
 def attack(session: StudentSession, fn: str = "attack", timeout: float | None = None, **args):
     """Run the attack function of the submission through the test probe."""
     return session.call("probe", timeout=timeout, name="attack", args={"fn": fn, **args})

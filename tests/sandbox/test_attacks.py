@@ -179,10 +179,13 @@ def test_huge_floats_are_numbers_far_from_the_answer(open_one):
     assert value == [1e308, -1e308] and value != pytest.approx(HONEST)
 
 
-def test_an_oversized_answer_breaks_the_protocol(open_one):
+def test_an_oversized_answer_is_refused_in_words_and_the_worker_goes_on(open_one):
+    # the worker holds its answers to the grader's bounds (grader.inside.answer_bounds): a 10 MB string is
+    # the student's error, not a broken protocol (a worker that sends it anyway: test_answer_bounds.py)
     session = open_one("evil_objects")
-    with pytest.raises(WorkerDied, match="exceeds"):
+    with pytest.raises(StudentError, match="characters of text, more than the grader takes"):
         attack(session, kind="big_string")
+    assert honest_probe(session) == pytest.approx(HONEST) and session.starts == 1
 
 
 def test_reading_solutions_and_other_files(open_session, mode):

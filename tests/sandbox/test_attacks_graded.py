@@ -13,8 +13,8 @@ import threading
 import time
 from pathlib import Path
 
-import mistakes
 import pytest
+from sandbox_helpers import graded_attack
 
 from grader.grading import grade_submission
 from grader.sandbox.isolation import BWRAP
@@ -26,17 +26,6 @@ CHECK = "week2.uni_to_diff.round_trip"
 LIMITS = Limits(call_seconds=1.0, total_seconds=20.0)
 SANDBOXED = _choose("auto") == BWRAP
 only_bwrap = pytest.mark.skipif(not SANDBOXED, reason="holds only inside bubblewrap (documented)")
-
-
-def graded_attack(base: Path, name: str, **fill: object) -> Path:
-    """solutions/week2 with tests/data/attacks/graded/<name>.patch applied; __KEY__ placeholders filled in."""
-    folder = mistakes.build("attacks/graded", name, base, 2)
-    for file in mistakes.read_mistake(mistakes.mistake_path("attacks/graded", name)).files:
-        text = (folder / file).read_text()
-        for key, value in fill.items():
-            text = text.replace(f"__{key.upper()}__", str(value))
-        (folder / file).write_text(text)
-    return folder
 
 
 def grade(folder: Path, only: str = CHECK, **kw) -> tuple[dict, dict]:

@@ -80,7 +80,7 @@ def test_a_forged_command_is_refused_by_the_simulator_rules(shared_dir, one_mode
 def test_forged_debug_values_reach_the_trace_only_as_declared_kinds(shared_dir, one_mode):
     # ...and whatever a forged worker puts in debug, the trace keeps only declared names, of their kind
     junk = ("{'vel_r': 1.0, 'vel_l': 1.0, 'state': 'x' * 10000, 'debug': {'v': 'fast', 'w': [1.0], "
-            "'theta_g': True, 'u_ao': [1, 2, 3], 'ir_points_wf': [[0.0] * 10**5, [0.0] * 10**5], "
+            "'theta_g': True, 'u_ao': [1, 2, 3], 'ir_points_wf': [[0.0] * 1000, [0.0] * 1000], "
             "'junk': list(range(1000))}}")
     forge = ("        from simiam.control.local_brain import LocalBrain\n"
              f"        LocalBrain.step = lambda self, readings: {junk}\n")

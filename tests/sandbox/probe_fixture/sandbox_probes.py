@@ -6,7 +6,7 @@
 
 from types import SimpleNamespace
 
-__all__ = ["attack", "uni_to_diff", "echo", "nap", "modules"]
+__all__ = ["attack", "uni_to_diff", "echo", "length", "nap", "modules"]
 
 
 def _robot() -> SimpleNamespace:
@@ -23,6 +23,11 @@ def attack(sub, fn: str = "attack", **args):
 
 def echo(sub, value=None):
     return value
+
+
+def length(sub, value=""):
+    """The length of what it was sent: a large request with a small answer."""
+    return len(value)
 
 
 def nap(sub, seconds: float = 0.0):
