@@ -29,10 +29,27 @@ def _n(v: float) -> str:
     return "0" if s in ("-0", "") else s
 
 
+# No quantity of a run of this robot comes near a million (metres, seconds, rad/s, counts); a student's
+# debug value can be any finite float, up to 1.8e308, and the difference of two such overflows to inf. A
+# value beyond this is left out of a plot, which says how many it left out, rather than flattening every
+# other value into a line or breaking the axis arithmetic.
+OFF_CHART = 1e6
+
+
 def _finite(v) -> TypeGuard[float]:
     if type(v) is float:  # the common case first: a plot calls this once per point
         return v - v == 0.0  # False for inf and nan only
     return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _plottable(v) -> TypeGuard[float]:
+    """A number a plot draws: finite and within ±OFF_CHART."""
+    return _finite(v) and -OFF_CHART <= v <= OFF_CHART
+
+
+def _off_chart(v) -> bool:
+    """A finite number too large to draw: the plot counts it and says so."""
+    return _finite(v) and not -OFF_CHART <= v <= OFF_CHART
 
 
 def _label(v: float) -> str:
@@ -58,9 +75,9 @@ def _downsample(xs: Sequence, ys: Sequence, limit: int = 600) -> list[tuple[floa
     stride = max(1, math.ceil(n / limit))
     out = []
     for k in range(0, n, stride):
-        out.append((xs[k], ys[k] if _finite(ys[k]) else None))
+        out.append((xs[k], ys[k] if _plottable(ys[k]) else None))
     if n and (n - 1) % stride:
-        out.append((xs[n - 1], ys[n - 1] if _finite(ys[n - 1]) else None))
+        out.append((xs[n - 1], ys[n - 1] if _plottable(ys[n - 1]) else None))
     return out
 
 
@@ -92,15 +109,12 @@ class Chart:
 
     def render(self) -> Markup:
         ml, mr, mt, mb = 46, 10, 22 if self.title else 8, 34
-        xs = [x for s in self.series for x, y in zip(s.xs, s.ys, strict=False) if _finite(x) and _finite(y)]
-        ys = [y for s in self.series for x, y in zip(s.xs, s.ys, strict=False) if _finite(x) and _finite(y)]
+        pairs = [(x, y) for s in self.series for x, y in zip(s.xs, s.ys, strict=False)]
         for bxs, los, his, _ in self.bands:
-            for x, lo, hi in zip(bxs, los, his, strict=False):
-                if _finite(x):
-                    for v in (lo, hi):
-                        if _finite(v):
-                            xs.append(x)
-                            ys.append(v)
+            pairs += [(x, v) for x, lo, hi in zip(bxs, los, his, strict=False) for v in (lo, hi)]
+        off = sum(1 for x, y in pairs if (_off_chart(x) and _finite(y)) or (_off_chart(y) and _finite(x)))
+        xs = [x for x, y in pairs if _plottable(x) and _plottable(y)]
+        ys = [y for x, y in pairs if _plottable(x) and _plottable(y)]
         if not xs:
             xs, ys = [0.0, 1.0], [0.0, 1.0]
         x0, x1 = min(xs), max(xs)
@@ -135,6 +149,10 @@ class Chart:
                    f'stroke="#c5cbd3"/>')
         for xs, los, his, color in self.bands:
             out.extend(_band(xs, los, his, color, px, py))
+        if off:  # top right, inside the frame: the plot says what it left out
+            values = f"{off} value{'s' if off != 1 else ''}"
+            out.append(f'<text x="{w - mr - 4}" y="{mt + 12}" text-anchor="end" fill="{ORANGE}">'
+                       f'{values} off the chart (beyond ±{OFF_CHART:,.0f})</text>')
         for x, color, label in self.vlines:
             if _finite(x) and x0 <= x <= x1:
                 out.append(f'<line x1="{_n(px(x))}" x2="{_n(px(x))}" y1="{mt}" y2="{h - mb}" '
@@ -162,11 +180,11 @@ def _paths(s: Series, px, py) -> list[str]:
     cur: list[str] = []
     prev = None
     for x, y in _downsample(s.xs, s.ys):
-        if y is None or not _finite(x) or (s.wrap and prev is not None and abs(y - prev) > math.pi):
+        if y is None or not _plottable(x) or (s.wrap and prev is not None and abs(y - prev) > math.pi):
             if len(cur) > 1:
                 paths.append("M" + " L".join(cur))
             cur = []
-        if y is not None and _finite(x):
+        if y is not None and _plottable(x):
             cur.append(f"{_n(px(x))} {_n(py(y))}")
         prev = y
     if len(cur) > 1:
@@ -188,7 +206,7 @@ def _band(xs, los, his, color, px, py) -> list[str]:
     n = min(len(xs), len(los), len(his))
     for k in range(0, n, max(1, math.ceil(n / 600))):
         x, lo, hi = xs[k], los[k], his[k]
-        ok = _finite(x) and _finite(lo) and _finite(hi)
+        ok = _plottable(x) and _plottable(lo) and _plottable(hi)
         if not ok or (seg and abs(lo - seg[-1][1]) > math.pi):
             flush()
             seg = []
@@ -212,7 +230,7 @@ def trajectory_svg(trace: dict, size: int = 360) -> Markup:
     goal = trace.get("goal")
     if goal:
         pts.append((goal[0], goal[1]))
-    pts = [p for p in pts if _finite(p[0]) and _finite(p[1])] or [(-1.0, -1.0), (1.0, 1.0)]
+    pts = [p for p in pts if _plottable(p[0]) and _plottable(p[1])] or [(-1.0, -1.0), (1.0, 1.0)]
     x0, x1 = min(p[0] for p in pts), max(p[0] for p in pts)
     y0, y1 = min(p[1] for p in pts), max(p[1] for p in pts)
     span = max(x1 - x0, y1 - y0, 0.2) * 1.06
@@ -241,7 +259,7 @@ def trajectory_svg(trace: dict, size: int = 360) -> Markup:
     true = _polyline(xs, ys, sx, sy)
     if true:
         out.append(f'<polyline points="{true}" fill="none" stroke="{BLUE}" stroke-width="1.8"/>')
-    if goal and _finite(goal[0]) and _finite(goal[1]):
+    if goal and _plottable(goal[0]) and _plottable(goal[1]):
         gx, gy = sx(goal[0]), sy(goal[1])
         out.append(f'<circle cx="{_n(gx)}" cy="{_n(gy)}" r="6" fill="none" stroke="{GREEN}" '
                    f'stroke-width="2"/>'
@@ -277,7 +295,7 @@ def trajectory_svg(trace: dict, size: int = 360) -> Markup:
 
 
 def _polyline(xs: Sequence, ys: Sequence, sx, sy) -> str:
-    pts = [(x, y) for x, y in _downsample(xs, ys, 800) if y is not None and _finite(x)]
+    pts = [(x, y) for x, y in _downsample(xs, ys, 800) if y is not None and _plottable(x)]
     return " ".join(f"{_n(sx(x))},{_n(sy(y))}" for x, y in pts)
 
 

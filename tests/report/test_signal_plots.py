@@ -92,3 +92,43 @@ def test_checks_may_declare_state_and_signal_plots_and_nothing_else():
     Check("week5.x", "x", "scenario", 1.0, lambda ctx: None, plots=("trajectory", "states", "signals:d_prog"))
     with pytest.raises(ValueError, match="unknown plots"):
         Check("week5.x", "x", "scenario", 1.0, lambda ctx: None, plots=("state",))
+
+
+# ---- issue 22 item 3: any finite value, however large ----------------------------------------------------
+BIG = 1.7976931348623157e308  # the largest float
+
+
+def _huge_trace():
+    trace = SWITCHING.switching_trace()
+    n = len(trace["steps"]["t"])
+    trace["steps"]["u_gtg"] = [[1e308, -1e308]] * n
+    trace["steps"]["d_prog"] = [BIG if k % 2 else -BIG for k in range(n)]
+    trace["steps"]["switches"] = list(range(n))  # beside them, a small signal still drawn
+    return trace, n
+
+
+def test_plots_survive_any_finite_value_and_say_what_is_off_the_chart():
+    trace, n = _huge_trace()
+    svg = str(signals_svg(trace, ["d_prog", "u_gtg", "switches"]))
+    ElementTree.fromstring(svg)
+    assert f"{3 * n} values off the chart (beyond ±1,000,000)" in svg
+    assert "inf" not in svg and "e+" not in svg and re.search(r'<path d="M[^"]+" fill="none"', svg)
+    assert ">switches</text>" in svg
+
+
+def test_a_huge_heading_or_estimate_stays_off_the_other_plots():
+    from grader.report.svg import heading_svg, trajectory_svg
+
+    trace, n = _huge_trace()
+    trace["steps"]["theta_g"] = [BIG] * n  # the student's own theta_g, drawn when no goal is known
+    trace["steps"]["x_est"] = [1e308] * n
+    for svg in (str(heading_svg({**trace, "goal": None})), str(trajectory_svg(trace))):
+        ElementTree.fromstring(svg)
+        assert "inf" not in svg and "e+" not in svg
+        assert max(len(number) for number in re.findall(r"-?[\d.]+", svg)) < 12  # no 300-digit pixel
+
+
+def test_the_axis_of_every_finite_value_overflows():
+    wrong = _module("report_wrong_axis", DATA / "report_wrong/unbounded_axis.py")
+    with pytest.raises(OverflowError):
+        wrong.signals_svg(_huge_trace()[0], ["d_prog", "u_gtg"])

@@ -166,3 +166,16 @@ def test_without_bubblewrap_too(tmp_path, name, fragment):
     result, check = grade(graded_attack(tmp_path, name), sandbox="subprocess")
     assert result["isolation"] == "subprocess" and "no bubblewrap" in result["isolation_note"]
     assert check["points"] == 0 and fragment in check["message"]
+
+
+def test_a_huge_finite_debug_value_keeps_the_report_and_the_points(tmp_path):
+    """Issue 22 item 3: week 5's blend stretched to ±1e308 (its heading, and so the run, unchanged): the
+    report is written, its plot says what is off the chart, and the check keeps its points."""
+    import mistakes
+
+    out = tmp_path / "reports"
+    folder = mistakes.build("attacks/graded", "huge_debug", tmp_path, 5)
+    result = grade_submission(5, folder, only="week5.blending.reach_goal", out_dir=out)
+    check = result["checks"][0]
+    assert (check["status"], check["points"]) == ("passed", check["max_points"])
+    assert "values off the chart (beyond ±1,000,000)" in (out / "week5.html").read_text()
