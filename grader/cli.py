@@ -17,12 +17,14 @@ import argparse
 import json
 import os
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
-from grader.grading import DEFAULT_SEED, CourseFilesMissing, grade_submission
+from grader.grading import DEFAULT_SEED, CourseFilesMissing, grade_submission, write_outputs
 from grader.result import all_passed
 from grader.terminal import print_result
 from grader.untrusted import printable
+from simiam import safe_write
 from simiam.course.folders import WeekFolderNotFound, week_folder
 from simiam.course.weeks import get_week, week_numbers
 
@@ -109,7 +111,6 @@ def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
         folder,
         seed=DEFAULT_SEED if args.seed is None else args.seed,
         hidden=args.hidden,
-        out_dir=out_dir,
         sandbox=args.sandbox,
         only=args.check,
         case=case,
@@ -121,11 +122,27 @@ def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
         from grader.replay import print_replay
 
         print_replay(result)
-    if out_dir is not None:
+    # written here, not by grade_submission, so that a file that cannot be written (a link planted in the
+    # student's reports/, which is never written through) is one line after the grades, not a traceback
+    written = True
+    if out_dir is not None and (written := _written(lambda: write_outputs(result, traces, out_dir))):
         print(f"  report: {printable(out_dir / f'week{week}.html', multiline=False)} and week{week}.json")
     if args.json_file:
-        Path(args.json_file).write_text(json.dumps(result, indent=1), encoding="utf-8")
+        text = json.dumps(result, indent=1)
+        written = _written(lambda: safe_write.write_text(args.json_file, text)) and written
+    if not written:
+        return 2
     return 0 if all_passed(result) else 1
+
+
+def _written(write: Callable[[], object]) -> bool:
+    """Run `write`; False, with the reason printed, if the file system refused it."""
+    try:
+        write()
+    except OSError as exc:
+        print(f"grade: not written: {printable(str(exc), multiline=False)}", file=sys.stderr)
+        return False
+    return True
 
 
 def main(argv: list[str] | None = None) -> int:

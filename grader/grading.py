@@ -26,6 +26,7 @@ from grader.sandbox.errors import SandboxError
 from grader.sandbox.limits import Limits
 from grader.sandbox.output import cut_middle
 from grader.sandbox.session import StudentSession
+from simiam import safe_write
 from simiam.course.shipped import files_to_write, missing_note, shipped_version
 
 DEFAULT_SEED = 2014
@@ -336,11 +337,11 @@ def _finish(result: dict, traces: dict[str, dict], out_dir: Path | str | None) -
 
 
 def write_outputs(result: dict, traces: dict[str, dict], out_dir: Path) -> tuple[Path, Path | None]:
-    """Write weekN.json and (when the report package is present) weekN.html into out_dir."""
-    out_dir.mkdir(parents=True, exist_ok=True)
+    """Write weekN.json and (when the report package is present) weekN.html into out_dir, never through a
+    link (simiam.safe_write: `grade` runs in a student's folder, whose reports/ anyone may have prepared);
+    a link there raises LinkRefused, an OSError."""
     week = result["week"]
-    json_path = out_dir / f"week{week}.json"
-    json_path.write_text(json.dumps(result, indent=1), encoding="utf-8")
+    json_path = safe_write.write_text(out_dir / f"week{week}.json", json.dumps(result, indent=1))
     try:
         from grader.report.html import write_report
     except ImportError:

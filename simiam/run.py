@@ -146,13 +146,13 @@ def _run(args: argparse.Namespace, week: Week, folder: Path, run_folder: Path, w
     error = _ending_words(trace.ending, folder, run_folder)
 
     out = Path(args.out)
-    try:
+    try:  # never through a link (simiam.safe_write): LinkRefused is an OSError that names the link
         csv_path, json_path = trace.write(out, stem=week.name)
+        replay = _write_replay(trace.to_json(), out / f"{week.name}.html")
     except OSError as exc:
         return _fail(f"simiam run: cannot write the trace into {out}: {exc.strerror or exc}", 2)
     print(f"trace: {csv_path}")
     print(f"trace: {json_path}")
-    replay = _write_replay(trace.to_json(), out / f"{week.name}.html")
     if replay is not None:
         print(f"replay: {replay}")
     print()

@@ -10,12 +10,14 @@ registry. A trace without `signals` (written before they were declared) recorded
 from __future__ import annotations
 
 import csv
+import io
 import json
 from dataclasses import dataclass, field
 from enum import Enum
 from pathlib import Path
 from typing import Any
 
+from simiam import safe_write
 from simiam.robot.quickbot import IR_MOUNTS
 from simiam.signals import WEEKS_1_TO_4, declared, from_headers, headers
 
@@ -188,14 +190,14 @@ class Trace:
         return rows
 
     def write(self, directory: str | Path, stem: str = "trace") -> tuple[Path, Path]:
-        """Write `<stem>.csv` and `<stem>.json` into `directory`; returns (csv_path, json_path)."""
+        """Write `<stem>.csv` and `<stem>.json` into `directory` (never through a link: simiam.safe_write);
+        returns (csv_path, json_path)."""
         directory = Path(directory)
-        directory.mkdir(parents=True, exist_ok=True)
-        csv_path = directory / f"{stem}.csv"
-        json_path = directory / f"{stem}.json"
-        with csv_path.open("w", newline="") as f:
-            out = csv.writer(f)
-            out.writerow(self.csv_header())
-            out.writerows(self.csv_rows())
-        json_path.write_text(json.dumps(self.to_json(), allow_nan=False, separators=(",", ":")))
+        table = io.StringIO(newline="")
+        out = csv.writer(table)
+        out.writerow(self.csv_header())
+        out.writerows(self.csv_rows())
+        csv_path = safe_write.write_text(directory / f"{stem}.csv", table.getvalue())
+        json_path = safe_write.write_text(directory / f"{stem}.json",
+                                          json.dumps(self.to_json(), allow_nan=False, separators=(",", ":")))
         return csv_path, json_path

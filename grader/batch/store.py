@@ -1,7 +1,8 @@
 """The output folder of a batch: file names, atomic writes, and one writer at a time.
 
-Every file is written to a temporary name in the same folder and moved into place with ``os.replace``,
-so a batch killed at any instant leaves each file either complete or absent. A student's HTML is written
+Every file is written through simiam.safe_write (a random temporary name in the same folder, created
+exclusively, moved into place with ``os.replace``; never through a link), so a batch killed at any instant
+leaves each file either complete or absent. A student's HTML is written
 before their JSON: the JSON is the commit record the resume logic trusts.
 """
 
@@ -15,6 +16,9 @@ import os
 import secrets
 from collections.abc import Iterator
 from pathlib import Path
+from typing import TextIO
+
+from simiam import safe_write
 
 LOCK = ".batch.lock"
 SEED = ".seed"         # the folder's secret seed (see :func:`folder_seed`)
@@ -29,15 +33,7 @@ def write_atomic(path: Path, text: str, mode: int | None = None) -> None:
 
     A lone surrogate (a student's non-UTF-8 file name, or text their code sent) is written as ``?``
     rather than failing the write: nothing a student sends can stop a file from being written."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    with open(tmp, "w", encoding="utf-8", errors="replace") as stream:
-        if mode is not None:       # before a byte is written: a secret is never readable by others
-            os.fchmod(stream.fileno(), mode)
-        stream.write(text)
-        stream.flush()
-        os.fsync(stream.fileno())
-    os.replace(tmp, path)
+    safe_write.write_text(path, text, errors="replace", mode=mode, fsync=True)
 
 
 def write_json(path: Path, value: object, mode: int | None = None) -> None:
@@ -61,7 +57,7 @@ def exclusive(out: Path) -> Iterator[None]:
     out.mkdir(parents=True, exist_ok=True)
     path = out / LOCK
     while True:
-        lock = open(path, "a")
+        lock = _open_lock(path)
         try:
             fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError as exc:
@@ -69,7 +65,7 @@ def exclusive(out: Path) -> Iterator[None]:
             if exc.errno in (errno.EAGAIN, errno.EWOULDBLOCK, errno.EACCES):
                 raise OutputBusy(f"another batch is already writing to {out}") from None
             # a file system without locks (some network mounts): carry on unlocked rather than refuse
-            lock = open(path, "a")
+            lock = _open_lock(path)
             break
         if _same_file(lock, path):
             break
@@ -84,6 +80,17 @@ def exclusive(out: Path) -> Iterator[None]:
         with contextlib.suppress(OSError):
             path.unlink()       # while still holding it, so a waiting batch re-checks (see above)
         lock.close()
+
+
+def _open_lock(path: Path) -> TextIO:
+    """The lock file, opened to append nothing: created if missing, never through a link planted there."""
+    try:
+        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND | os.O_NOFOLLOW | os.O_CLOEXEC, 0o644)
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            raise safe_write.LinkRefused(path) from None
+        raise
+    return os.fdopen(fd, "a")
 
 
 def _same_file(stream: object, path: Path) -> bool:

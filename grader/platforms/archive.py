@@ -2,14 +2,16 @@
 
 Entries get a fixed timestamp and explicit Unix modes (scripts 0755, secrets 0600, the rest 0644), so
 rebuilding an unchanged week gives an identical zip and the platform sees executable scripts whatever the
-instructor's umask. The zip is written next to its final name and moved into place.
+instructor's umask. The zip is written next to its final name and moved into place (simiam.safe_write: a
+temporary name nobody can predict, never through a link).
 """
 
 from __future__ import annotations
 
-import os
 import zipfile
 from pathlib import Path
+
+from simiam import safe_write
 
 _EPOCH = (2014, 1, 1, 0, 0, 0)   # the course's first run; zip cannot store dates before 1980
 
@@ -18,14 +20,11 @@ def write_zip(path: Path, files: dict[str, bytes], modes: dict[str, int] | None 
     """Write `files` ({posix path inside the zip: bytes}) to `path`, each with mode 0644 unless `modes`
     names another (0o755 for scripts, 0o600 for what only the owner may read)."""
     modes = modes or {}
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as archive:
+    with safe_write.replacing(path) as stream, zipfile.ZipFile(stream, "w", zipfile.ZIP_DEFLATED) as archive:
         for name in sorted(files):
             info = zipfile.ZipInfo(name, _EPOCH)
             info.compress_type = zipfile.ZIP_DEFLATED
             info.create_system = 3                      # Unix, so that the mode bits below are honoured
             info.external_attr = (0o100000 | modes.get(name, 0o644)) << 16
             archive.writestr(info, files[name])
-    os.replace(tmp, path)
     return path

@@ -62,6 +62,7 @@ def main(argv: list[str]) -> int:
     from grader.platforms.course import CourseNotFound, course_root
     from grader.platforms.handout import HandoutLeak
     from grader.platforms.wheel import WheelBuildFailed
+    from simiam.safe_write import LinkRefused
 
     args = _parser().parse_args(argv)
     try:
@@ -79,7 +80,8 @@ def main(argv: list[str]) -> int:
         weeks = ([_week(w.strip()) for w in args.weeks.split(",") if w.strip()] if args.weeks is not None
                  else list(week_numbers()))
         return run_selfcheck(course, weeks, wrong=args.wrong, seed=args.seed)
-    except (CourseNotFound, HandoutLeak, WheelBuildFailed, ValueError, argparse.ArgumentTypeError) as exc:
+    except (CourseNotFound, HandoutLeak, WheelBuildFailed, ValueError, argparse.ArgumentTypeError,
+            LinkRefused) as exc:  # LinkRefused: a link where a file was to be written (simiam.safe_write)
         print(f"grade {args.command}: {exc}", file=sys.stderr)
         return 2
 

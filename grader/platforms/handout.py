@@ -101,7 +101,7 @@ def build_handout(week: int, out: Path, course: Path) -> tuple[Path, Path]:
     if problems:
         raise HandoutLeak(f"week {week}'s handout would leak: " + "; ".join(problems))
     folder, archive = out / f"week{week}", out / f"week{week}.zip"
-    if folder.exists():
+    if folder.exists() or folder.is_symlink():  # a dangling link too: the folder is never moved onto one
         raise ValueError(f"{folder} already exists: remove it or choose another --out")
     out.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix=f".week{week}-", dir=out) as tmp:

@@ -28,6 +28,7 @@ from markupsafe import Markup
 from grader.report import svg
 from grader.report.signal_plots import declared_plots
 from grader.untrusted import printable
+from simiam import safe_write
 from simiam.course.weeks import hidden_variants
 
 # Metrics the scenario checks report, in the order shown, with how to print them.
@@ -340,7 +341,6 @@ def write_report(result: dict, traces: dict[str, dict] | None, path: str | Path,
     replays="files" writes each run's full replay page into `<stem>-replays/` next to it and links them.
     """
     out = Path(path)
-    out.parent.mkdir(parents=True, exist_ok=True)
     hrefs: dict[str, str] = {}
     if replays == "files" and traces:
         from simiam.viewer.replay import TraceFormatError, write_replay
@@ -352,6 +352,6 @@ def write_report(result: dict, traces: dict[str, dict] | None, path: str | Path,
             except TraceFormatError:
                 continue
             hrefs[key] = f"{folder.name}/{_slug(key)}.html"
-    out.write_text(render_report(result, traces, replays="none" if replays == "files" else replays,
-                                 replay_hrefs=hrefs), encoding="utf-8", errors="replace")
-    return out
+    page = render_report(result, traces, replays="none" if replays == "files" else replays,
+                         replay_hrefs=hrefs)
+    return safe_write.write_text(out, page, errors="replace")  # never through a link

@@ -20,6 +20,7 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
+from simiam import safe_write
 from simiam.course.blocks import BlockError, find_blocks, fingerprint, replace_bodies
 from simiam.course.placeholders import placeholder_for
 from simiam.course.skeleton_stamp import SKELETONS, STAMP, stamp_text
@@ -175,9 +176,8 @@ def write(generated: Generated, root: Path = ROOT) -> list[str]:
     changed = differences(generated, root)
     for rel, text in generated.files.items():
         path = root / rel
-        path.parent.mkdir(parents=True, exist_ok=True)
         if not path.is_file() or path.read_text(encoding="utf-8") != text:
-            path.write_text(text, encoding="utf-8")
+            safe_write.write_text(path, text)
     for rel in _stale(generated, root):
         (root / rel).unlink()
     return changed

@@ -21,6 +21,8 @@ from typing import Any
 
 import jinja2
 
+from simiam import safe_write
+
 GENERATOR = "python -m grader.report.precompiled"
 
 
@@ -79,5 +81,5 @@ def write_if_changed(path: Path, text: str, check: bool) -> bool:
     if path.is_file() and path.read_text(encoding="utf-8") == text:
         return False
     if not check:
-        path.write_text(text, encoding="utf-8")
+        safe_write.write_text(path, text)
     return True

@@ -20,6 +20,7 @@ from typing import Any
 import jinja2
 from markupsafe import Markup
 
+from simiam import safe_write
 from simiam.robot.quickbot import IR_MOUNTS
 from simiam.signals import WEEKS_1_TO_4, declared, from_headers, headers
 
@@ -296,11 +297,9 @@ def render_replay(trace: dict, title: str | None = None, max_rows: int | None = 
 
 
 def write_replay(trace: dict, path: str | Path) -> Path:
-    """Write the replay page for `trace` to `path` (parent folders created) and return the path."""
-    out = Path(path)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(render_replay(trace), encoding="utf-8")
-    return out
+    """Write the replay page for `trace` to `path` (parent folders created; never through a link,
+    simiam.safe_write) and return the path."""
+    return safe_write.write_text(path, render_replay(trace))
 
 
 def main(argv: list[str] | None = None) -> int:
