@@ -16,7 +16,10 @@ follows a link planted at `path` and overwrites whatever it points to; a tempora
 
 The folders above the one written into are the path the user gave and are followed as usual. Writers
 into a folder the grading made itself (tempfile.mkdtemp: the worker's copy of a submission, the spliced
-files, a library being built) need none of this and use plain writes.
+files, a library being built) need none of this and use plain writes. Where the system has no O_NOFOLLOW
+or descriptor-relative calls (Windows, where only `simiam run` and `simiam migrate` may run), the same
+steps go by path: the links are refused as above, but one planted between the check and the write is not
+seen (the rename still only replaces it).
 """
 
 from __future__ import annotations
@@ -26,11 +29,13 @@ import errno
 import os
 import secrets
 import stat
+import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 from typing import BinaryIO
 
 _TEMPORARY_SUFFIX = ".tmp"  # .<name>.<random>.tmp: what the batch sweeps up after a kill (grader.batch.store)
+_AT_FOLDER = hasattr(os, "O_NOFOLLOW") and hasattr(os, "O_DIRECTORY") and os.open in os.supports_dir_fd
 
 
 class LinkRefused(OSError):
@@ -62,7 +67,11 @@ def replacing(path: str | Path, *, mode: int | None = None, fsync: bool = False)
     """A binary stream whose bytes become `path` when the block ends without an exception (for writers
     that stream: a zip, a CSV). If the block raises, `path` is left as it was."""
     path = Path(path)
-    folder = open_folder(path.parent)
+    if not _AT_FOLDER:
+        with _replacing_by_path(path, mode, fsync) as stream:
+            yield stream
+        return
+    folder = _open_folder(path.parent)
     try:
         _refuse_link(path, folder)
         temporary, fd = _create_temporary(path.name, folder, mode)
@@ -81,13 +90,30 @@ def replacing(path: str | Path, *, mode: int | None = None, fsync: bool = False)
         os.close(folder)
 
 
-def make_folder(path: str | Path) -> Path:
-    """Create `path` (and the folders above it) if missing and return it; LinkRefused if `path` is a link."""
-    os.close(open_folder(Path(path)))
-    return Path(path)
+@contextlib.contextmanager
+def _replacing_by_path(path: Path, mode: int | None, fsync: bool) -> Iterator[BinaryIO]:
+    """`replacing` where descriptor-relative calls are missing: the same steps, by path."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    for checked in (path.parent, path):
+        if checked.is_symlink():
+            raise LinkRefused(checked)
+    fd, temporary = tempfile.mkstemp(prefix=f".{path.name[:200]}.", suffix=_TEMPORARY_SUFFIX, dir=path.parent)
+    try:
+        if mode is not None:
+            os.chmod(temporary, mode)
+        with os.fdopen(fd, "wb") as stream:
+            yield stream
+            if fsync:
+                stream.flush()
+                os.fsync(stream.fileno())
+        os.replace(temporary, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(temporary)
+        raise
 
 
-def open_folder(path: Path) -> int:
+def _open_folder(path: Path) -> int:
     """A descriptor of folder `path`, created if missing (its parents as usual), never through a link at
     `path` itself. The caller closes it."""
     path.parent.mkdir(parents=True, exist_ok=True)

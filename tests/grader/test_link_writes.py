@@ -110,6 +110,20 @@ def test_a_temporary_name_already_taken_is_drawn_again(tmp_path, victim, monkeyp
     assert victim.read_text() == KEPT and (tmp_path / "out.txt").read_text() == "mine"
 
 
+def test_without_descriptor_relative_calls_the_same_links_are_refused(tmp_path, victim, monkeypatch):
+    """Windows has no O_NOFOLLOW and no dir_fd (only simiam run and migrate may run there): by path."""
+    monkeypatch.setattr(safe_write, "_AT_FOLDER", False)
+    (tmp_path / "reports").symlink_to(victim.parent)
+    (tmp_path / "out.txt").symlink_to(victim)
+    (tmp_path / f".new.txt.{os.getpid()}.tmp").symlink_to(victim)
+    for path in (tmp_path / "out.txt", tmp_path / "reports" / "out.txt"):
+        with pytest.raises(LinkRefused):
+            safe_write.write_text(path, "x")
+    safe_write.write_text(tmp_path / "new.txt", "mine", mode=0o600)
+    assert victim.read_text() == KEPT and (tmp_path / "new.txt").read_text() == "mine"
+    assert (tmp_path / "new.txt").stat().st_mode & 0o777 == 0o600
+
+
 def test_a_secret_is_written_with_its_mode(tmp_path):
     path = safe_write.write_text(tmp_path / "secret.json", "{}", mode=0o600)
     assert path.stat().st_mode & 0o777 == 0o600
@@ -206,6 +220,7 @@ ALLOWED = {
     ("simiam/course/splice.py", "splice_folder"): FRESH + ": the grading's spliced files",
     ("simiam/run.py", "fill_missing_files"): FRESH + ": simiam run's copy of the folder",
     ("simiam/safe_write.py", "replacing"): "the one careful writer",
+    ("simiam/safe_write.py", "_replacing_by_path"): "the same, where there is no O_NOFOLLOW (Windows)",
     ("simiam/safe_write.py", "_create_temporary"): "os.open with O_EXCL and O_NOFOLLOW",
 }
 _METHODS = {"write_text", "write_bytes", "rename", "replace", "touch", "symlink_to", "hardlink_to"}
