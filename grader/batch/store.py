@@ -2,8 +2,8 @@
 
 Every file is written through simiam.safe_write (a random temporary name in the same folder, created
 exclusively, moved into place with ``os.replace``; never through a link), so a batch killed at any instant
-leaves each file either complete or absent. A student's HTML is written
-before their JSON: the JSON is the commit record the resume logic trusts.
+leaves each file either complete or absent. A student's HTML is written before their JSON: the JSON is the
+commit record the resume logic trusts.
 """
 
 from __future__ import annotations
