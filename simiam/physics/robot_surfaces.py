@@ -18,7 +18,7 @@ from collections.abc import Sequence
 from simiam.physics.collision import plate_collides, plate_collides_exact
 from simiam.physics.ir_ranging import cone_range, cone_range_exact
 from simiam.physics.precheck import span
-from simiam.physics.segments import CULL_PAD, ObstacleEdges, Surface, tolerance
+from simiam.physics.segments import CULL_PAD, ObstacleEdges, Surface, Tolerance, tolerance
 from simiam.physics.transform import fast_error, transform_exact, transform_fast
 from simiam.robot.ir_sensor import distance_to_raw, mounted_cone, settled_raw
 from simiam.robot.quickbot import RobotSpec
@@ -48,6 +48,11 @@ class RobotSurfaces:
         largest = max(self.obstacles.largest, 4 * self._plate_reach + 4 * CULL_PAD)
         self._plate_size = 4 * self._plate_reach + largest
         self._ir_size = 4 * self._ir_reach + largest
+        # the fast loop's margins, worked out once for a robot anywhere within `_extent` of the origin in x
+        # and y (margins for a farther robot hold for a nearer one too); beyond it, per pose
+        self._extent = 4.0 + max((abs(c) for p in obstacles for v in p for c in v), default=0.0)
+        self._plate_margins = self._margins(self._extent, self._plate_reach, self._plate_size)
+        self._ir_margins = self._margins(self._extent, self._ir_reach, self._ir_size)
         self._raw_nothing = distance_to_raw(spec.ir_max_range, spec.ir_mode)
 
     def collides(self, pose: Pose, others: Sequence[ObstacleEdges] = ()) -> bool:
@@ -59,8 +64,10 @@ class RobotSurfaces:
         if not near:
             return False
         xs, ys = transform_fast(pose, self.plate)
-        slack = fast_error(self._plate_reach, max(abs(x), abs(y)) + self._plate_reach)
-        verdict = plate_collides(xs, ys, near, tolerance(slack, self._plate_size))
+        margins = self._plate_margins
+        if not (-self._extent < x < self._extent and -self._extent < y < self._extent):
+            margins = self._margins(max(abs(x), abs(y)), self._plate_reach, self._plate_size)
+        verdict = plate_collides(xs, ys, near, margins)
         if verdict is not None:  # the same for every placement within the slack, the original's included
             return verdict
         xs, ys = transform_exact(pose, self.plate)
@@ -80,7 +87,9 @@ class RobotSurfaces:
         if not near:  # open space: every cone reads max_range
             return ranges, raws
         xs, ys = transform_fast(pose, self._cone_points)
-        margins = tolerance(fast_error(self._ir_reach, max(abs(x), abs(y)) + self._ir_reach), self._ir_size)
+        margins = self._ir_margins
+        if not (-self._extent < x < self._extent and -self._extent < y < self._extent):
+            margins = self._margins(max(abs(x), abs(y)), self._ir_reach, self._ir_size)
         for i in range(n):
             found = cone_range(xs[6 * i:6 * i + 6], ys[6 * i:6 * i + 6], near, lo, hi, margins)
             if found is None:
@@ -97,6 +106,12 @@ class RobotSurfaces:
             ranges[i] = d
             raws[i] = distance_to_raw(d, mode)
         return ranges, raws
+
+    @staticmethod
+    def _margins(extent: float, reach: float, size: float) -> Tolerance:
+        """segments.tolerance for a surface within `reach` of a body origin within `extent` of the world's
+        in x and y, against obstacles such that `size` bounds the boxes (see __init__)."""
+        return tolerance(fast_error(reach, extent + reach), size)
 
     def plate_at(self, pose: Pose) -> ObstacleEdges:
         """The base plate at `pose` as an obstacle for other robots (a Fleet), plainly transformed."""

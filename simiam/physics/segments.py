@@ -102,16 +102,17 @@ HIGH = 1.0 + BAND
 INNER = 1.0 - BAND
 ROUNDOFF = 8 * U
 
-# (slack, big, steady) of one placement: see `tolerance` and `culled_crossings`
-Tolerance = tuple[float, float, float]
+# (slack, big, steady, floor, scale) of one placement: see `tolerance` and `culled_crossings`
+Tolerance = tuple[float, float, float, float, float]
 
 
 def tolerance(slack: float, size: float) -> Tolerance:
     """The fast loop's margins for vertices within `slack` of the original's in each coordinate, against
-    obstacles such that `size` bounds the polygon's box width plus height plus any obstacle's."""
+    obstacles such that `size` bounds the polygon's box width plus height plus any obstacle's. `floor` and
+    `scale` bound a crossing point's error as floor + (|x21| + |y21|)*scale/|d| (see `culled_crossings`)."""
     size += 4 * slack
     big = size * (8 * slack + size * 2.0 ** -48)
-    return slack, big, big * (1.0 + 4.0 / BAND)
+    return slack, big, big * (1.0 + 4.0 / BAND), 6 * slack + size * ROUNDOFF, 3 * big
 
 
 def _decide(d: float, na: float, nb: float, big: float) -> bool | None:
@@ -165,7 +166,7 @@ def culled_crossings(xs: Sequence[float], ys: Sequence[float], polygons: Sequenc
     if margins is None:
         margins = tolerance(0.0, (pxmax - pxmin) + (pymax - pymin)
                             + max((p[1] - p[0]) + (p[3] - p[2]) for p in polygons))
-    slack, big, steady = margins
+    slack, big, steady, floor, scale = margins
     unsteady = -steady
     for oxmin, oxmax, oymin, oymax, table in polygons:
         if pxmax < oxmin or pxmin > oxmax or pymax < oymin or pymin > oymax:
@@ -197,28 +198,28 @@ def culled_crossings(xs: Sequence[float], ys: Sequence[float], polygons: Sequenc
                 x13 = x1 - x3
                 if unsteady < d < steady:
                     verdict = _decide(d, x43 * y13 - y43 * x13, x21 * y13 - y21 * x13, big)
-                    if verdict is None:
-                        yield None
-                        continue
-                    if not verdict:
-                        continue
-                    ua = (x43 * y13 - y43 * x13) / d
+                    ua = (x43 * y13 - y43 * x13) / d if verdict else 0.0  # |d| > 3*big when it crosses
                 else:
                     ua = (x43 * y13 - y43 * x13) / d
-                    if ua < LOW or ua > HIGH:
+                    if BAND < ua < INNER:
+                        ub = (x21 * y13 - y21 * x13) / d
+                        if BAND < ub < INNER:
+                            verdict = True
+                        elif ub < LOW or ub > HIGH:
+                            continue
+                        else:
+                            verdict = _decide(d, x43 * y13 - y43 * x13, x21 * y13 - y21 * x13, big)
+                    elif ua < LOW or ua > HIGH:
                         continue
-                    ub = (x21 * y13 - y21 * x13) / d
-                    if ub < LOW or ub > HIGH:
-                        continue
-                    if not (BAND < ua < INNER and BAND < ub < INNER):
+                    else:
                         verdict = _decide(d, x43 * y13 - y43 * x13, x21 * y13 - y21 * x13, big)
-                        if verdict is None:
-                            yield None
-                            continue
-                        if not verdict:
-                            continue
-                # u_a moves by at most 2*big/(|d| - big) plus the divisions' rounding (|n_a| <= |d|), the
-                # point by that along the edge plus the vertices' own slack and the rounding of x1 + x21*ua
-                length = (x21 if x21 > 0.0 else -x21) + (y21 if y21 > 0.0 else -y21)
-                error = 6 * slack + length * (2 * big / ((d if d > 0.0 else -d) - big) + ROUNDOFF)
+                if not verdict:
+                    if verdict is None:
+                        yield None
+                    continue
+                # u_a moves by at most 2*big/(|d| - big) <= 3*big/|d| (|d| > 3*big) plus the divisions'
+                # rounding (|n_a| <= |d|); the point by that times |x21| + |y21| (<= size), plus the
+                # vertices' own slack and the rounding of x1 + x21*ua: `floor` (`tolerance`)
+                error = floor + ((x21 if x21 > 0.0 else -x21) + (y21 if y21 > 0.0 else -y21)) * scale / (
+                    d if d > 0.0 else -d)
                 yield x1 + x21 * ua, y1 + y21 * ua, error

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-import math
+from math import floor
 
 
 def round_half_away(x: float) -> int:
@@ -12,7 +12,8 @@ def round_half_away(x: float) -> int:
     would count as 1 and an odd integer above 2**52 as the next even one. Here x - floor(x) is exact
     (Sterbenz's lemma for |x| >= 1, x itself below), so only the comparison with one half decides.
     """
-    if x < 0.0:
-        return -round_half_away(-x)
-    whole = math.floor(x)
-    return whole + 1 if x - whole >= 0.5 else whole
+    if x >= 0.0:
+        whole = floor(x)
+        return whole + 1 if x - whole >= 0.5 else whole
+    whole = floor(-x)  # whole + x = -(|x| - floor(|x|)), exact as above
+    return -whole - 1 if whole + x <= -0.5 else -whole
