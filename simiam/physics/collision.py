@@ -37,7 +37,7 @@ def plate_collides(xs: Sequence[float], ys: Sequence[float], polygons: Sequence[
     The answer holds for every plate within `margins`' slack of (xs, ys) in each coordinate (`margins` from
     segments.tolerance; default: these are the original's vertices); None when it might not
     (a vertex within rounding of an obstacle edge, say): then ask `plate_collides_exact` on the original's
-    vertices."""
+    vertices. Near-collinear edges whose boxes are apart are simiam.physics.parallel's to find."""
     undecided = False
     for hit in culled_crossings(xs, ys, polygons, margins):
         if hit is not None:

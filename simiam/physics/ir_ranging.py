@@ -48,7 +48,8 @@ def cone_range(xs: Sequence[float], ys: Sequence[float], polygons: Sequence[Poly
     Returns (range, error): for every cone within `margins`' slack of (xs, ys) in each coordinate (`margins`
     from segments.tolerance; default: these are the original's vertices) the original's
     test finds the same crossings, and its range lies within `error` of this one; None when some crossing
-    might be found or lost (then ask `cone_range_exact` on the original's vertices)."""
+    might be found or lost (then ask `cone_range_exact` on the original's vertices). Near-collinear edges
+    whose boxes are apart are simiam.physics.parallel's to find."""
     ax = xs[0]
     ay = ys[0]
     d_min = max_range

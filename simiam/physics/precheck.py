@@ -6,7 +6,8 @@ vertex from the centroid, computed once when the surface is built. For two surfa
 centroids are at most (span_a + span_b)/2 apart, so the test never drops a real crossing; what it does drop
 are the crossings the edge formula reports between far-apart edges that are nearly collinear (rounding, not
 geometry). The exact path (collision.plate_collides_exact, ir_ranging.cone_range_exact) applies it so that it
-reports those exactly when the original does.
+reports those exactly when the original does, and simiam.physics.parallel relies on it to bound how far
+apart such edges can be.
 """
 
 from __future__ import annotations

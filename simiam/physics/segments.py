@@ -11,7 +11,7 @@ may differ from the original's by `slack` in each coordinate (transform.fast_err
 where no vertices within `slack` of these, evaluated by the same formula, could decide it the other way,
 and reports the others as undecided (None): then the caller asks the exact path, on the original's
 vertices. Pairs whose boxes are apart are skipped; the formula can still report such a pair when the two
-edges are nearly collinear (its rounding, not their geometry): the culling does not look for those yet.
+edges are nearly collinear (its rounding, not their geometry), which simiam.physics.parallel looks out for.
 """
 
 from __future__ import annotations
@@ -22,7 +22,8 @@ from simiam.physics.precheck import centroid, span
 
 # Bounding boxes are widened by this much before culling, so that rounding in the exact formula can never
 # report a real crossing the cull has thrown away (coordinates are metres, a few units at most). Culled
-# pairs are therefore always at least CULL_PAD apart.
+# pairs are therefore always at least CULL_PAD apart, which bounds how parallel two edges the formula still
+# reports must be (simiam.physics.parallel).
 CULL_PAD = 1e-9
 
 U = 2.0 ** -53  # the unit roundoff of a double

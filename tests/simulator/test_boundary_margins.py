@@ -1,18 +1,23 @@
 """The pieces that keep the fast path exact: the plain transform's error bound, the culled loop's margins
-(a decided answer holds for every placement within the slack) and the raw values' rounding boundaries
-(simiam.physics.transform, segments; simiam.robot.ir_sensor)."""
+(a decided answer holds for every placement within the slack), the raw values' rounding boundaries and
+the near-parallel headings (simiam.physics.transform, segments, parallel; simiam.robot.ir_sensor)."""
 
 from __future__ import annotations
 
 import math
 import random
 
+import pytest
+
 from simiam.physics.collision import plate_collides, plate_collides_exact
 from simiam.physics.ir_ranging import cone_range, cone_range_exact
-from simiam.physics.segments import ObstacleEdges, tolerance
+from simiam.physics.parallel import NearParallel
+from simiam.physics.precheck import span
+from simiam.physics.segments import ObstacleEdges, crossing, tolerance
 from simiam.physics.transform import fast_error, transform_exact, transform_fast
 from simiam.robot.ir_sensor import distance_to_raw, ir_voltage, mounted_cone, settled_raw
 from simiam.robot.quickbot import spec_for_week
+from simiam.world import load_world
 
 SPEC = spec_for_week(4)
 PLATE = list(SPEC.base_plate)
@@ -117,3 +122,65 @@ def test_settled_raw_holds_for_every_distance_within_the_error():
     assert abs(ir_voltage(lo) * 1000 / 3 - 400.5) < 1e-9
     assert settled_raw(lo, 1e-15) is None and settled_raw(lo, 0.0) == distance_to_raw(lo)
 
+
+def test_near_parallel_flags_every_culled_pair_the_formula_reports():
+    """Cone side edges against obstacle edges on their own line, behind the apex or beyond the far point
+    (boxes apart): whenever the formula reports such a pair, the heading is flagged for that cone. And the
+    flagged headings are rare (a flag everywhere would pass the first half)."""
+    world = load_world("week4")
+    obstacles = ObstacleEdges(world.obstacles)
+    rng = random.Random(34)
+    reported = 0
+    for _ in range(3000):
+        pose = (rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-7, 7))
+        i = rng.randrange(5)
+        xs, ys = transform_exact(pose, CONES[i])
+        k = rng.choice([0, 5])  # apex to the first far point, last far point to the apex
+        a = (xs[k], ys[k], xs[(k + 1) % 6], ys[(k + 1) % 6])
+        t3 = rng.choice([rng.uniform(1.05, 3.0), rng.uniform(-2.0, -0.05)])
+        t4 = t3 + rng.uniform(0.05, 1.0) * (1 if t3 > 0 else -1)
+        b = (a[0] + t3 * (a[2] - a[0]), a[1] + t3 * (a[3] - a[1]),
+             a[0] + t4 * (a[2] - a[0]), a[1] + t4 * (a[3] - a[1]))
+        if crossing(a, b) is None:
+            continue
+        reported += 1
+        tri = [(b[0], b[1]), (b[2], b[3]), (b[0] + 0.3 * (a[1] - a[3]), b[1] + 0.3 * (a[2] - a[0]))]
+        spans = [span(PLATE)] + [span(c) for c in CONES]
+        index = NearParallel([PLATE, *CONES], spans, ObstacleEdges([tri]), REACH)
+        assert i + 1 in index.flagged(*pose)
+    assert reported > 30
+    index = NearParallel([PLATE, *CONES], [span(PLATE)] + [span(c) for c in CONES], obstacles, REACH)
+    flagged = sum(bool(index.flagged(0.0, 0.0, rng.uniform(-7, 7))) for _ in range(20000))
+    assert flagged < 100  # under 0.5 % of headings in the week-4 world
+
+
+# a triangle whose edges are parallel to no robot edge at heading 0 (no interval reaches 0 or pi: the
+# look-up wraps round from the last interval to the first)
+ODD_TRIANGLE = [(0.5, 0.5), (0.5 + math.cos(0.123), 0.5 + math.sin(0.123)), (0.2, 1.4)]
+
+
+@pytest.mark.parametrize("obstacles", [load_world("week4").obstacles, [ODD_TRIANGLE]], ids=["week4", "odd"])
+def test_near_parallel_remembers_free_headings_without_missing_an_interval(obstacles):
+    """A robot turning slowly, both ways and past multiples of pi: the remembered free stretch never hides
+    a flagged heading (each answer equals a fresh look-up's), and far out everything is flagged."""
+    spans = [span(PLATE)] + [span(c) for c in CONES]
+    index = NearParallel([PLATE, *CONES], spans, ObstacleEdges(obstacles), REACH)
+    fresh = NearParallel([PLATE, *CONES], spans, ObstacleEdges(obstacles), REACH)
+    rng = random.Random(35)
+    headings, theta = [], -7.0
+    while theta < 7.0:  # a slow turn, mostly one way
+        theta += rng.uniform(-0.0002, 0.0012)
+        headings.append(theta)
+    # and, in order, the middle of every interval and the headings just either side of k*pi
+    middles = [(lo + hi) / 2 for lo, hi in zip(index._starts[1:], index._ends[1:], strict=True)]
+    sweep = sorted([k * math.pi + m for k in range(-2, 3) for m in middles]
+                   + [k * math.pi + e for k in range(-2, 3) for e in (-1e-7, 1e-7)])
+    flagged = 0
+    for theta in headings + sweep + headings[::-1] + sweep[::-1]:  # turning left, then right
+        fresh.free = (0.0, 0.0)
+        got = index.flagged(0.2, -0.1, theta)
+        assert got == fresh.flagged(0.2, -0.1, theta), theta
+        flagged += bool(got)
+    assert flagged > 10 * len(middles)  # every interval, in five turns of pi, both ways
+    assert index.flagged(1e5, 0.0, 0.0) == frozenset(range(6)) == index.flagged(0.0, 0.0, 1e7)
+    assert NearParallel([PLATE], spans[:1], ObstacleEdges([]), REACH).flagged(0.0, 0.0, 1.0) == frozenset()
