@@ -26,6 +26,7 @@ from simiam.physics.transform import transform_fast
 from simiam.robot import dynamics
 from simiam.robot.ir_sensor import distance_to_raw, ir_voltage
 from simiam.robot.quickbot import RobotSpec, limit_speeds
+from simiam.robot.rounding import round_half_away
 from simiam.robot.wheel_encoder import WheelEncoder
 
 # The manual's look-up table (Figure 2b): distance (m), voltage (V).
@@ -169,6 +170,12 @@ def ir_divider(spec: RobotSpec) -> float:
     return 500.0 if spec.ir_mode == "week2" else 1000.0 / 3.0
 
 
+def table_raw(spec: RobotSpec, volts: float) -> int:
+    """The raw value of a table voltage through this week's divider, rounded as the simulator's ADC rounds
+    (MATLAB's round, half away from zero, exact)."""
+    return round_half_away(ir_divider(spec) * volts)
+
+
 __all__ = [
     "IR_TABLE",
     "angle_diff",
@@ -187,6 +194,7 @@ __all__ = [
     "placed",
     "points_at",
     "sensor_points",
+    "table_raw",
     "travel",
     "wrap",
 ]

@@ -18,12 +18,10 @@ from dataclasses import dataclass
 from typing import Any
 
 from simiam.brain import Brain, BrainError, Command, ConstantBrain, Readings, validate_command
-from simiam.physics.collision import plate_collides
-from simiam.physics.ir_ranging import cone_range
-from simiam.physics.segments import ObstacleEdges, PolygonBox
+from simiam.physics.robot_surfaces import RobotSurfaces
+from simiam.physics.segments import ObstacleEdges
 from simiam.physics.transform import transform_fast
 from simiam.robot.dynamics import move
-from simiam.robot.ir_sensor import distance_to_raw, mounted_cone
 from simiam.robot.quickbot import RobotSpec, limit_speeds
 from simiam.robot.wheel_encoder import WheelEncoder
 from simiam.signals import WEEKS_1_TO_4, debug_plan, declared, headers
@@ -85,17 +83,9 @@ class Simulator:
         self._k = 0
         self._collided = False
         self._first_collision: dict | None = None
-        self._obstacles = ObstacleEdges(world.obstacles)
-        self._plate = list(spec.base_plate)
-        self._cones = [mounted_cone(m, spec.ir_max_range, spec.ir_spread) for m in spec.ir_mounts]
-        self._cone_points = [p for cone in self._cones for p in cone]
-        # how far from the body origin the plate and the cones reach: obstacles farther away are skipped
-        # for the whole step (ObstacleEdges.near is conservative, so nothing that could be hit is dropped)
-        self._plate_reach = max(math.hypot(px, py) for px, py in self._plate)
-        self._ir_reach = max(math.hypot(px, py) for px, py in self._cone_points)
-        self._raw_nothing = distance_to_raw(spec.ir_max_range, spec.ir_mode)
-        self._ir_range = [spec.ir_max_range] * len(self._cones)
-        self._ir_raw = [0] * len(self._cones)
+        self._surfaces = RobotSurfaces(spec, world.obstacles)
+        self._ir_range = [spec.ir_max_range] * self._n_ir
+        self._ir_raw = [0] * self._n_ir
         self._update_ir()
         self._last: StepRecord = self._record(None)
 
@@ -152,7 +142,7 @@ class Simulator:
 
     def sensor_positions(self) -> list[tuple[float, float]]:
         """World positions of the IR sensors (the cone apexes) at the current true pose."""
-        xs, ys = transform_fast((self._x, self._y, self._theta), [cone[0] for cone in self._cones])
+        xs, ys = transform_fast((self._x, self._y, self._theta), [cone[0] for cone in self._surfaces.cones])
         return list(zip(xs, ys, strict=True))
 
     def set_pose(self, pose: Pose) -> None:
@@ -173,32 +163,12 @@ class Simulator:
         return self._check_collision()
 
     # --- physics ---
-    def _update_ir(self, others: Sequence[PolygonBox] = ()) -> None:
+    def _update_ir(self, others: Sequence[ObstacleEdges] = ()) -> None:
         """Recompute the IR ranges at the true pose; `others` are other robots' base plates (a Fleet)."""
-        spec = self.spec
-        lo, hi, mode = spec.ir_min_range, spec.ir_max_range, spec.ir_mode
-        n = len(self._cones)
-        near = self._obstacles.near(self._x, self._y, self._ir_reach)
-        if others:
-            near = near + list(others)
-        if not near:  # open space: every cone reads max_range
-            self._ir_range[:] = [hi] * n
-            self._ir_raw[:] = [self._raw_nothing] * n
-            return
-        xs, ys = transform_fast((self._x, self._y, self._theta), self._cone_points)
-        for i in range(n):
-            d = cone_range(xs[6 * i:6 * i + 6], ys[6 * i:6 * i + 6], near, lo, hi)
-            self._ir_range[i] = d
-            self._ir_raw[i] = self._raw_nothing if d == hi else distance_to_raw(d, mode)
+        self._ir_range, self._ir_raw = self._surfaces.sense((self._x, self._y, self._theta), others)
 
-    def _check_collision(self, others: Sequence[PolygonBox] = ()) -> bool:
-        near = self._obstacles.near(self._x, self._y, self._plate_reach)
-        if others:
-            near = near + list(others)
-        if not near:
-            return False
-        xs, ys = transform_fast((self._x, self._y, self._theta), self._plate)
-        return plate_collides(xs, ys, near)
+    def _check_collision(self, others: Sequence[ObstacleEdges] = ()) -> bool:
+        return self._surfaces.collides((self._x, self._y, self._theta), others)
 
     def _move(self) -> None:
         spec = self.spec
@@ -245,7 +215,7 @@ class Simulator:
             command = self._think(t)
         return command
 
-    def _collide(self, others: Sequence[PolygonBox] = ()) -> bool:
+    def _collide(self, others: Sequence[ObstacleEdges] = ()) -> bool:
         """The collision check at the new pose; remembers the first collision."""
         self._collided = self._check_collision(others)
         if self._collided and self._first_collision is None:
@@ -257,10 +227,9 @@ class Simulator:
         self._last = self._record(command)
         return self._last
 
-    def plate_polygon(self) -> PolygonBox:
+    def plate_polygon(self) -> ObstacleEdges:
         """The base plate at the current true pose, as an obstacle for other robots (a Fleet)."""
-        xs, ys = transform_fast((self._x, self._y, self._theta), self._plate)
-        return ObstacleEdges([list(zip(xs, ys, strict=True))]).polygons[0]
+        return self._surfaces.plate_at((self._x, self._y, self._theta))
 
     def run(self, seconds: float, stop_on_collision: bool = True,
             until: Callable[[StepRecord], bool] | None = None,

@@ -149,7 +149,7 @@ def ir_table(ctx: Context) -> Outcome:
     worst = 0.0
     chunks = [rows[start : start + 5] for start in range(0, len(rows), 5)]
     chunks = [chunk + [rows[-1]] * (5 - len(chunk)) for chunk in chunks]
-    raws = [[int(math.floor(divider * v + 0.5)) for _, v in chunk] for chunk in chunks]
+    raws = [[ref.table_raw(ctx.spec, v) for _, v in chunk] for chunk in chunks]
     for chunk, raw, answer in zip(chunks, raws, _distances(ctx, raws), strict=False):
         for (d, v), r, got in zip(chunk, raw, answer, strict=False):
             err = abs(got - d)

@@ -27,18 +27,34 @@ def ir_voltage(d: float) -> float:
     return v
 
 
-def distance_to_raw(d: float, ir_mode: str = "week3") -> int:
-    """`QuickBot.ir_distance_to_raw`: distance (m) -> ADC value, round half away from zero, clamped."""
+# A bound on |d raw_units / d distance| over the sensor's range (up to 0.31 m): the derivative's terms
+# bounded one by one, times the larger divider (500 per volt, week 2).
+RAW_SLOPE = 500 * sum(k * abs(c) * 0.31 ** (k - 1) for k, c in enumerate(reversed(VOLTAGE_COEFFS)) if k)
+
+
+def _adc(d: float, ir_mode: str) -> tuple[float, int, int]:
+    """The ADC's input for distance d (unrounded) and its clamp (lo, hi), per ir_mode."""
     v = ir_voltage(d)
     if ir_mode == "week3":
-        # the original writes V*1000/3 (left to right)
-        x = v * 1000 / 3
-        lo, hi = 133, 917
-    elif ir_mode == "week2":
-        x = v * 1000 / 2
-        lo, hi = 200, 1375
-    else:
-        raise ValueError(f"unknown ir_mode {ir_mode!r} (expected 'week2' or 'week3')")
+        return v * 1000 / 3, 133, 917  # the original writes V*1000/3 (left to right)
+    if ir_mode == "week2":
+        return v * 1000 / 2, 200, 1375
+    raise ValueError(f"unknown ir_mode {ir_mode!r} (expected 'week2' or 'week3')")
+
+
+def distance_to_raw(d: float, ir_mode: str = "week3") -> int:
+    """`QuickBot.ir_distance_to_raw`: distance (m) -> ADC value, round half away from zero, clamped."""
+    x, lo, hi = _adc(d, ir_mode)
+    return min(max(round_half_away(x), lo), hi)
+
+
+def settled_raw(d: float, error: float, ir_mode: str = "week3") -> int | None:
+    """d's raw value if every distance within `error` of d gives it, else None: the ADC's input must be
+    farther from a rounding boundary (an integer plus one half) than the distances can move it. Polynomial
+    rounding, which differs between two nearby distances by far less than 1e-9 raw units, is counted in."""
+    x, lo, hi = _adc(d, ir_mode)
+    if error and abs(x - math.floor(x) - 0.5) <= RAW_SLOPE * error + 1e-9:
+        return None
     return min(max(round_half_away(x), lo), hi)
 
 

@@ -107,7 +107,7 @@ def _ir_true(raw: int) -> float:
     from simiam.course.weeks import get_week
 
     spec = get_week(2).spec
-    table = {int(ref.ir_divider(spec) * v + 0.5): d for d, v in ref.IR_TABLE}
+    table = {ref.table_raw(spec, v): d for d, v in ref.IR_TABLE}
     if raw in table:
         return table[raw]
     return min((abs(ref.ir_raw(spec, d / 10000) - raw), d / 10000) for d in range(200, 4000, 2))[1]

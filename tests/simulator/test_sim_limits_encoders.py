@@ -45,6 +45,15 @@ def test_weeks_1_to_3_have_no_dead_zone():
         assert spec.limit_speeds(0.1, -9.0) == (0.1, -80 * 2 * math.pi / 60)
 
 
+# the wheel angle whose tick count the encoder computes as exactly 0.5 - 2**-54 (the largest double below
+# 0.5): floor(x + 0.5) counts it as 1, because x + 0.5 rounds up to 1.0 before the floor
+JUST_BELOW_HALF_TICK = math.nextafter(math.pi / 16, 0)
+
+
+def test_just_below_half_a_tick_is_the_largest_double_below_half():
+    assert JUST_BELOW_HALF_TICK * 16 / (2 * math.pi) == 0.5 - 2 ** -54 == math.nextafter(0.5, 0)
+
+
 def encoder_problems(cls) -> list:
     out = []
     e = cls(16)
@@ -55,6 +64,14 @@ def encoder_problems(cls) -> list:
     e.update(-math.pi / 16, 1.0)
     if e.ticks != -1:
         out.append(("minus half tick", e.ticks))
+    e = cls(16)
+    e.update(JUST_BELOW_HALF_TICK, 1.0)         # 0.5 - 2**-54 of a tick: MATLAB's round gives 0
+    if e.ticks != 0:
+        out.append(("just below half a tick", e.ticks))
+    e = cls(16)
+    e.update(-JUST_BELOW_HALF_TICK, 1.0)
+    if e.ticks != 0:
+        out.append(("just below minus half a tick", e.ticks))
     e = cls(16)
     tick = 2 * math.pi / 16
     seen = []

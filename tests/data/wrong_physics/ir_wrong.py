@@ -1,7 +1,7 @@
 """WRONG IR models, each a `ranger(pose) -> (ranges, raws, apexes)` in the final world."""
 import math
 
-from simiam.physics.ir_ranging import cone_range
+from simiam.physics.ir_ranging import cone_range, cone_range_exact
 from simiam.physics.segments import ObstacleEdges
 from simiam.physics.transform import transform_fast
 from simiam.robot.ir_sensor import distance_to_raw, ir_voltage, mounted_cone
@@ -12,6 +12,12 @@ SPEC = spec_for_week(4)
 OBSTACLES = ObstacleEdges(load_world("final").obstacles)
 
 
+def _range(xs, ys, lo, hi):
+    """The fast ranging where it decides, else the all-pairs one (the right parts these models reuse)."""
+    found = cone_range(xs, ys, OBSTACLES.polygons, lo, hi)
+    return found[0] if found else cone_range_exact(list(zip(xs, ys)), OBSTACLES.surfaces, lo, hi)
+
+
 def centre_ray(pose):
     """A single ray along the sensor axis instead of the 6-vertex cone."""
     ranges, raws, apexes = [], [], []
@@ -19,7 +25,7 @@ def centre_ray(pose):
         ray = [mount[:2], (mount[0] + 0.3 * math.cos(mount[2]), mount[1] + 0.3 * math.sin(mount[2]))]
         xs, ys = transform_fast(pose, ray)
         # a degenerate 2-vertex "polygon": the ray and its way back
-        d = cone_range(xs, ys, OBSTACLES.polygons, 0.04, 0.3)
+        d = _range(xs, ys, 0.04, 0.3)
         ranges.append(d)
         raws.append(distance_to_raw(d, "week3"))
         apexes.append((xs[0], ys[0]))
@@ -31,7 +37,7 @@ def bankers_round(pose):
     ranges, raws, apexes = [], [], []
     for mount in SPEC.ir_mounts:
         xs, ys = transform_fast(pose, mounted_cone(mount, 0.3, SPEC.ir_spread))
-        d = cone_range(xs, ys, OBSTACLES.polygons, 0.0, 0.3)
+        d = _range(xs, ys, 0.0, 0.3)
         ranges.append(d)
         raws.append(min(max(round(ir_voltage(d) * 1000 / 3), 133), 917))
         apexes.append((xs[0], ys[0]))
@@ -45,7 +51,7 @@ def mirrored_mounts(pose):
               (0.0613, -0.0244, -math.pi / 4), (-0.0474, -0.0534, -math.pi / 2)]
     for mount in mounts:
         xs, ys = transform_fast(pose, mounted_cone(mount, 0.3, SPEC.ir_spread))
-        d = cone_range(xs, ys, OBSTACLES.polygons, 0.04, 0.3)
+        d = _range(xs, ys, 0.04, 0.3)
         ranges.append(d)
         raws.append(distance_to_raw(d, "week3"))
         apexes.append((xs[0], ys[0]))

@@ -1,0 +1,163 @@
+"""One robot's surfaces against the world, answered as the original's `Physics` answers them.
+
+The base plate (`body_collision_detection`) and the IR cones (`proximity_sensor_detection`) are placed with
+the plain transform and tested with the culled loop, which decides whatever the last bits of the vertices
+cannot change. Where they might (a vertex within rounding of an edge, a raw value on a rounding boundary,
+an edge nearly collinear with one the culling skipped), that one surface is placed with the original's
+fused arithmetic (transform.transform_exact) and tested as the original does (precheck, every pair). Such
+steps are rare (see docs/design.md, "Exact at the boundaries"), so the step costs what the fast path costs.
+
+Other robots' plates (a Fleet) are tested as placed by the plain transform on both paths.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Sequence
+
+from simiam.physics.collision import plate_collides, plate_collides_exact
+from simiam.physics.ir_ranging import cone_range, cone_range_exact
+from simiam.physics.parallel import NONE, NearParallel
+from simiam.physics.precheck import span
+from simiam.physics.segments import CULL_PAD, ObstacleEdges, Surface, Tolerance, tolerance
+from simiam.physics.transform import fast_error, transform_exact, transform_fast
+from simiam.robot.ir_sensor import distance_to_raw, mounted_cone, settled_raw
+from simiam.robot.quickbot import RobotSpec
+
+Pose = tuple[float, float, float]
+Point = tuple[float, float]
+
+
+@functools.lru_cache(maxsize=16)
+def _near_parallel(surfaces: tuple[tuple[Point, ...], ...], spans: tuple[float, ...],
+                   obstacles: tuple[tuple[Point, ...], ...], reach: float) -> NearParallel:
+    """One NearParallel per robot and world (it takes milliseconds to build, a Simulator microseconds)."""
+    return NearParallel(surfaces, spans, ObstacleEdges(obstacles), reach)
+
+
+class RobotSurfaces:
+    """The base plate and IR cones of `spec` (robot frame) against `obstacles`."""
+
+    def __init__(self, spec: RobotSpec, obstacles: Sequence[Sequence[Point]]) -> None:
+        self.spec = spec
+        self.obstacles = ObstacleEdges(obstacles)
+        self.plate = list(spec.base_plate)
+        self.cones = [mounted_cone(m, spec.ir_max_range, spec.ir_spread) for m in spec.ir_mounts]
+        self._cone_points = [p for cone in self.cones for p in cone]
+        # the spans the original computes once, from the robot-frame geometry
+        self._plate_span = span(self.plate)
+        self._cone_spans = [span(cone) for cone in self.cones]
+        # how far from the body origin the plate and the cones reach: obstacles farther away are skipped
+        # for the whole step (ObstacleEdges.near is conservative, so nothing that could be hit is dropped)
+        self._plate_reach = max(math.hypot(px, py) for px, py in self.plate)
+        self._ir_reach = max(math.hypot(px, py) for px, py in self._cone_points)
+        # culled_crossings' `size`: the robot's box (at most 2*reach a side) plus the largest obstacle's,
+        # another robot's plate included (a Fleet)
+        largest = max(self.obstacles.largest, 4 * self._plate_reach + 4 * CULL_PAD)
+        self._plate_size = 4 * self._plate_reach + largest
+        self._ir_size = 4 * self._ir_reach + largest
+        # the fast loop's margins, worked out once for a robot anywhere within `_extent` of the origin in x
+        # and y (margins for a farther robot hold for a nearer one too); beyond it, per pose
+        self._extent = 4.0 + max((abs(c) for p in obstacles for v in p for c in v), default=0.0)
+        self._plate_margins = self._margins(self._extent, self._plate_reach, self._plate_size)
+        self._ir_margins = self._margins(self._extent, self._ir_reach, self._ir_size)
+        # surface 0 is the plate, surface i + 1 the cone of sensor i
+        surfaces = (tuple(self.plate), *self.cones)
+        spans = (self._plate_span, *self._cone_spans)
+        polygons = tuple(tuple((float(x), float(y)) for x, y in p) for p in obstacles)
+        self._parallel = _near_parallel(surfaces, spans, polygons, max(self._plate_reach, self._ir_reach))
+        self._quick = min(self._extent, self._parallel.far)  # where NearParallel.free holds
+        self._raw_nothing = distance_to_raw(spec.ir_max_range, spec.ir_mode)
+
+    def collides(self, pose: Pose, others: Sequence[ObstacleEdges] = ()) -> bool:
+        """Whether the plate at `pose` touches an obstacle or one of `others` (other robots' plates)."""
+        x, y, _ = pose
+        near = self.obstacles.near(x, y, self._plate_reach)
+        if others:
+            near += [o.polygons[0] for o in others]
+        parallel = 0 in self._flagged(pose)
+        if near:
+            xs, ys = transform_fast(pose, self.plate)
+            margins = self._plate_margins
+            if not (-self._extent < x < self._extent and -self._extent < y < self._extent):
+                margins = self._margins(max(abs(x), abs(y)), self._plate_reach, self._plate_size)
+            verdict = plate_collides(xs, ys, near, margins)
+            if verdict:  # a crossing every nearby placement has: the original finds it too
+                return True
+            if verdict is False and not parallel:
+                return False
+        elif not parallel:
+            return False
+        xs, ys = transform_exact(pose, self.plate)
+        return plate_collides_exact(list(zip(xs, ys, strict=True)), self._surfaces(others), self._plate_span)
+
+    def sense(self, pose: Pose, others: Sequence[ObstacleEdges] = ()) -> tuple[list[float], list[int]]:
+        """The IR ranges (m) and raw values of every sensor with the robot at `pose`."""
+        spec = self.spec
+        lo, hi, mode = spec.ir_min_range, spec.ir_max_range, spec.ir_mode
+        n = len(self.cones)
+        ranges = [hi] * n
+        raws = [self._raw_nothing] * n
+        x, y, _ = pose
+        near = self.obstacles.near(x, y, self._ir_reach)
+        if others:
+            near += [o.polygons[0] for o in others]
+        parallel = self._flagged(pose)
+        if not near and not parallel:  # open space: every cone reads max_range
+            return ranges, raws
+        xs, ys = transform_fast(pose, self._cone_points)
+        margins = self._ir_margins
+        if not (-self._extent < x < self._extent and -self._extent < y < self._extent):
+            margins = self._margins(max(abs(x), abs(y)), self._ir_reach, self._ir_size)
+        for i in range(n):
+            if parallel and i + 1 in parallel:
+                d = self._cone_exact(pose, i, others)
+            elif near:
+                found = cone_range(xs[6 * i:6 * i + 6], ys[6 * i:6 * i + 6], near, lo, hi, margins)
+                if found is None:
+                    d = self._cone_exact(pose, i, others)
+                elif found[0] == hi and not found[1]:  # nothing crossed this cone
+                    continue
+                else:
+                    raw = settled_raw(found[0], found[1], mode)
+                    if raw is not None:
+                        ranges[i] = found[0]
+                        raws[i] = raw
+                        continue
+                    d = self._cone_exact(pose, i, others)
+            else:
+                continue
+            ranges[i] = d
+            raws[i] = distance_to_raw(d, mode)
+        return ranges, raws
+
+    @staticmethod
+    def _margins(extent: float, reach: float, size: float) -> Tolerance:
+        """segments.tolerance for a surface within `reach` of a body origin within `extent` of the world's
+        in x and y, against obstacles such that `size` bounds the boxes (see __init__)."""
+        return tolerance(fast_error(reach, extent + reach), size)
+
+    def _flagged(self, pose: Pose) -> frozenset[int]:
+        """NearParallel.flagged (surface 0 the plate, i + 1 cone i); most steps only test its free stretch."""
+        x, y, theta = pose
+        lo, hi = self._parallel.free
+        quick = self._quick
+        if lo < theta < hi and -quick < x < quick and -quick < y < quick:
+            return NONE
+        return self._parallel.flagged(x, y, theta)
+
+    def plate_at(self, pose: Pose) -> ObstacleEdges:
+        """The base plate at `pose` as an obstacle for other robots (a Fleet), plainly transformed."""
+        xs, ys = transform_fast(pose, self.plate)
+        return ObstacleEdges([list(zip(xs, ys, strict=True))])
+
+    def _cone_exact(self, pose: Pose, i: int, others: Sequence[ObstacleEdges]) -> float:
+        """Cone i's range as the original computes it, on the original's vertices."""
+        spec = self.spec
+        xs, ys = transform_exact(pose, self.cones[i])
+        return cone_range_exact(list(zip(xs, ys, strict=True)), self._surfaces(others), spec.ir_min_range,
+                                spec.ir_max_range, self._cone_spans[i])
+
+    def _surfaces(self, others: Sequence[ObstacleEdges]) -> list[Surface]:
+        return self.obstacles.surfaces + [o.surfaces[0] for o in others]
