@@ -42,6 +42,7 @@ from typing import Any
 from grader.batch.grading_process import NO_TASK
 from grader.batch.proctree import exit_reason, kill_tree
 from grader.sandbox.leftovers import sweep_scratch
+from grader.sandbox.workdir import temp_folder
 
 SCRATCH_PREFIX = "simiam-slot-"
 
@@ -95,7 +96,7 @@ class _Slot:
         self.close()
         task_r, task_w = os.pipe()
         reply_r, reply_w = os.pipe()
-        self.scratch = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
+        self.scratch = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-", dir=_scratch_parent()))
         self.scratch.chmod(0o711)     # a sandbox uid must reach its own read-only copy inside
         env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p),
                    TMPDIR=str(self.scratch))
@@ -311,12 +312,19 @@ def sweep_orphans(folder: Path | None = None) -> list[Path]:
     """Sweep the temporary folders of grading processes whose runner is gone (killed with SIGKILL, a
     power cut): each folder name carries the runner's pid."""
     swept = []
-    for path in Path(folder or tempfile.gettempdir()).glob(f"{SCRATCH_PREFIX}*-*"):
+    for path in Path(folder or _scratch_parent()).glob(f"{SCRATCH_PREFIX}*-*"):
         pid = path.name[len(SCRATCH_PREFIX):].split("-", 1)[0]
         if pid.isdigit() and not _alive(int(pid)) and path.is_dir():
             sweep_scratch(path)
             swept.append(path)
     return swept
+
+
+def _scratch_parent() -> Path:
+    """Where the grading processes' temporary folders go: TMPDIR, or, as root, a shared temporary folder
+    when TMPDIR is closed to other users, so that a plain-subprocess worker's uid can enter the copies made
+    inside (grader.sandbox.workdir) and the sweep still finds everything a killed process left."""
+    return temp_folder(os.geteuid() == 0)
 
 
 def _alive(pid: int) -> bool:

@@ -7,8 +7,9 @@
 Modules (the grader's side; what runs inside the worker is the package grader.inside): isolation
 (bubblewrap or plain subprocess, dedicated uid), exposed (what the worker can import), capabilities (what
 this system offers), runner (start, deadlines, kill the whole tree), output (capped capture of
-stdout/stderr), limits (Limits), workdir (private copy of the spliced folder), session (StudentSession,
-RemoteBrain), validate (type checks on untrusted values), errors, stuck, leftovers, bench.
+stdout/stderr), limits (Limits), workdir (private copy of the spliced folder), reach (what the worker's uid
+can reach), session (StudentSession, RemoteBrain), validate (type checks on untrusted values), errors, stuck,
+leftovers, bench.
 
 What holds in every mode: the grading process never imports student code; only strict JSON crosses back
 and the grader validates it; per-call and per-submission wall limits, RLIMIT_CPU/AS/FSIZE/NOFILE/NPROC,

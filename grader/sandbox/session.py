@@ -196,7 +196,7 @@ class StudentSession:
         began = time.monotonic()
         if self._work is None:
             self._uid = isolation.pick_uid()
-            work = WorkCopy(self.spliced_dir, self._uid)
+            work = WorkCopy(self.spliced_dir, self._uid, in_place=self.isolation == isolation.SUBPROCESS)
             try:  # the only simiam/grader the worker can import (shared, or beside the copy, removed with it)
                 self._library = isolation.worker_library(self.isolation, work.path.parent / "library")
             except BaseException:  # kept half-built, the next start would run without a library
