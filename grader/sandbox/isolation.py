@@ -26,9 +26,11 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from grader.sandbox import reach
 from grader.sandbox.exposed import WORKER, build_library, installed_copies
 from grader.sandbox.library import shared_library
 from simiam import numerics
+from simiam.course.folders import CHECKOUT
 
 BWRAP = "bwrap"
 SUBPROCESS = "subprocess"
@@ -41,9 +43,8 @@ NOTES = {
            "files and output.",
     SUBPROCESS: "no bubblewrap: student code runs in a separate{limited} process{uid}{net}; it is "
                 "killed with its whole process tree, and only JSON crosses back; it can import only the "
-                "course's student-facing modules, but it can read what its user can read (for example "
-                "solutions/ or the grader's files if they are world-readable) and write to /tmp while it "
-                "runs. {leftovers}",
+                "course's student-facing modules, but it can read what its user can read{reads} and "
+                "write to /tmp while it runs. {leftovers}",
 }
 
 
@@ -207,20 +208,34 @@ def _uid_range() -> tuple[int, int]:
     return max(spans, key=lambda r: r[1] - r[0], default=(0, 0))
 
 
-def _readable_by_others(path: str) -> bool:
-    """True if a uid with no privileges can reach `path` (every ancestor o+x, the path itself o+r)."""
-    p = Path(path).resolve()
-    for ancestor in reversed(p.parents):
-        if not os.stat(ancestor).st_mode & 0o001:
-            return False
-    return bool(os.stat(p).st_mode & 0o004)
-
-
 @functools.lru_cache(maxsize=1)
 def _private_env() -> bool:
-    """True if a uid without privileges cannot read the interpreter or its packages."""
-    paths = [sys.executable, *python_paths()]
-    return not all(_readable_by_others(p) for p in paths if os.path.exists(p))
+    """True if a uid without privileges cannot read the interpreter, its standard library or its packages
+    (grader.sandbox.reach: a virtual environment or pyenv under a folder only its owner can open)."""
+    paths = [sys.executable, os.path.dirname(os.__file__), *python_paths()]
+    return not all(reach.readable(p) for p in paths if os.path.exists(p))
+
+
+def course_files() -> dict[str, Path]:
+    """What the subprocess note says the worker can or cannot read, by the name it gives them: the grader's
+    own files (its checks' maths) and, in the course checkout, the reference solutions."""
+    files = {"the grader's files": Path(__file__).resolve().parents[1] / "reference.py"}
+    if (CHECKOUT / "solutions").is_dir():
+        files["solutions/"] = CHECKOUT / "solutions"
+    return files
+
+
+def _what_it_reads(own_uid: bool) -> str:
+    """The files of `course_files` the worker can read, as the note's parenthesis: all of them under the
+    grader's user or root; under a dedicated uid only those every user can reach (grader.sandbox.reach), so
+    the note is true of the machine it runs on, a checkout in a private folder included."""
+    files = course_files()
+    inside = [name for name, path in files.items() if not own_uid or reach.readable(path)]
+    outside = [name for name in files if name not in inside]
+    parts = [f"{' and '.join(inside)} included"] if inside else []
+    if outside:
+        parts.append(f"not {' or '.join(outside)}, which only their owner can reach here")
+    return f" ({'; '.join(parts)})"
 
 
 def clean_env() -> dict[str, str]:
@@ -293,13 +308,16 @@ def _describe_subprocess() -> str:
               "creates outlive the grading: nothing tells them apart from yours, so none are removed.")
     if os.geteuid() != 0:
         return note(net=net, uid=" under your own user, so it could also signal the grader, write where you "
-                    "can write and leave processes behind: treat this result as advisory", leftovers=cannot)
+                    "can write and leave processes behind: treat this result as advisory",
+                    reads=_what_it_reads(own_uid=False), leftovers=cannot)
     if _uid_range()[1] - _uid_range()[0] < 1000:
         return note(net=net, uid=" that stays root (no spare uid is mapped here, so the process limit does "
-                    "not bind and files root can write are writable)", leftovers=cannot)
+                    "not bind and files root can write are writable)", reads=_what_it_reads(own_uid=False),
+                    leftovers=cannot)
     env_note = " (the Python environment is private to root here, so only modules preloaded before the " \
                "drop can be imported)" if _private_env() else ""
     swept = ("What its uid leaves in /tmp, /var/tmp, /dev/shm and /dev/mqueue, and its System V IPC "
              "objects, are removed when its grading ends or is killed; files in any other place that uid "
              "can write are not.")
-    return note(net=net, uid=f" under its own unprivileged uid{env_note}", leftovers=swept)
+    return note(net=net, uid=f" under its own unprivileged uid{env_note}", reads=_what_it_reads(own_uid=True),
+                leftovers=swept)
