@@ -7,6 +7,7 @@ would pick whichever was imported first.)
 from __future__ import annotations
 
 import os
+import re
 import shutil
 from pathlib import Path
 
@@ -53,3 +54,17 @@ def attack(session: StudentSession, fn: str = "attack", timeout: float | None = 
 
 def honest_probe(session: StudentSession):
     return session.call("probe", name="uni_to_diff", args={"v": 0.1, "w": 0.5})
+
+
+def says_it_reads(note: str, name: str) -> bool:
+    """Whether a subprocess isolation note says the worker can read the course files called `name` (its
+    parenthesis after "can read what its user can read": "(X and Y included)", "(not X or Y, which ...)")."""
+    return re.search(re.escape(name) + r"[^;()]*included", note) is not None
+
+
+def open_marker(folder: Path) -> Path:
+    """A file any uid can read, so that a reading attack always has something to return."""
+    marker = folder / "marker.txt"
+    marker.write_text("open")
+    marker.chmod(0o644)
+    return marker

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy
 import pytest
-from sandbox_helpers import AS_ROOT, HONEST, attack, honest_probe
+from sandbox_helpers import AS_ROOT, HONEST, attack, honest_probe, open_marker, says_it_reads
 
 from grader.sandbox import validate
 from grader.sandbox.errors import StudentError, StudentTimeout, WorkerDied
@@ -188,17 +188,26 @@ def test_an_oversized_answer_is_refused_in_words_and_the_worker_goes_on(open_one
     assert honest_probe(session) == pytest.approx(HONEST) and session.starts == 1
 
 
-def test_reading_solutions_and_other_files(open_session, mode):
+def test_reading_solutions_and_other_files(open_session, mode, shared_dir):
     session = open_session("read_solutions")
-    paths = [str(REPO / "solutions" / "week1" / "differential_drive.py"), str(REPO / "pyproject.toml"),
-             "/work/shared/contract.md", str(REPO / "tests" / "data" / "attacks" / "_honest" / "quickbot.py")]
-    assert Path(paths[1]).exists()
+    solution = REPO / "solutions" / "week1" / "differential_drive.py"
+    grader_file = REPO / "grader" / "reference.py"
+    paths = [str(solution), str(grader_file), str(REPO / "pyproject.toml"), "/work/shared/contract.md",
+             str(REPO / "tests" / "data" / "attacks" / "_honest" / "quickbot.py")]
+    assert solution.exists() and grader_file.exists()
     if mode == BWRAP:
         with pytest.raises(StudentError, match="No such file"):
             attack(session, paths=paths)
-    else:  # documented: without bubblewrap, world-readable files stay readable
-        assert "can read" in session.isolation_note
-        assert paths[1] in attack(session, paths=paths)
+        return
+    # documented: without bubblewrap it reads what its uid can reach, and the note says which course files
+    # that includes wherever the checkout lives (a folder only its owner can open keeps them out: as root,
+    # test_private_folders.py lays one out)
+    marker = open_marker(shared_dir)
+    found = attack(session, paths=[*paths, str(marker)])
+    note = session.isolation_note
+    assert str(marker) in found and "can read what its user can read" in note
+    for name, path in (("solutions/", solution), ("the grader's files", grader_file)):
+        assert (str(path) in found) == says_it_reads(note, name), note
 
 
 def test_network(open_session, mode):
