@@ -7,7 +7,8 @@ it; anything else is a protocol violation and the worker is killed. A third pipe
 when a call times out, the runner sends SIGUSR1 (the worker registered faulthandler for it before any student
 code ran), keeps what arrives within a bounded wait in `stack_dump` (untrusted bytes for
 grader.sandbox.stuck), then kills. This costs nothing per call; a timeout costs about 20 ms more (at most
-0.5 s if the dump never comes).
+0.5 s if the dump never comes once the worker has taken the signal; until it has, up to DUMP_PENDING_SECONDS
+more: see `_dump_stack`).
 
 Killing covers the whole tree: the bubblewrap PID namespace dies with its init; in any mode a dedicated uid is
 swept with kill(-1) from a child that has become that uid, which reaches processes that called setsid or
@@ -23,6 +24,7 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 
 from grader.inside.answer_bounds import MAX_ANSWER_BYTES, OutOfBounds, check_message
 from grader.inside.protocol import MAX_MESSAGE, LineReader, ProtocolError, decode, encode_request
@@ -33,6 +35,9 @@ from grader.sandbox.output import CappedOutput
 
 DUMP_WAIT_SECONDS = 0.25   # how long a timed-out worker gets to write its stack dump before the kill
 DUMP_IDLE_SECONDS = 0.02
+# How long the grader waits for the worker to take the dump signal at all: on a loaded machine a spinning
+# worker may wait well over DUMP_WAIT_SECONDS for the CPU, and the signal stays pending until it runs.
+DUMP_PENDING_SECONDS = 2.0
 MAX_DUMP_BYTES = 64 * 1024
 
 _SIGNAL_MEANING: dict[int, str] = {
@@ -170,7 +175,11 @@ class WorkerProcess:
     def _dump_stack(self) -> bytes:
         """Ask the worker where it is (SIGUSR1 -> faulthandler) and collect the dump; b"" if none came.
 
-        Costs at most DUMP_WAIT_SECONDS, and only when a call has already timed out."""
+        Only when a call has already timed out. The wait for the dump starts once the worker has taken the
+        signal (an event, read in /proc), not when it was sent: with both cores busy a spinning worker can
+        wait longer for the CPU than the dump takes, and a fixed wait then lost the location. A worker that
+        ignores the signal takes it at once; one that blocks it (or never gets the CPU) costs at most
+        DUMP_PENDING_SECONDS more."""
         _drain(self._dump_r)  # anything written before now is not this timeout's dump
         pid = self._worker_pid()
         if pid is None:
@@ -179,6 +188,7 @@ class WorkerProcess:
             os.kill(pid, signal.SIGUSR1)
         except (ProcessLookupError, PermissionError):
             return b""
+        _wait_while(lambda: _signal_pending(pid, signal.SIGUSR1), self._dump_r, DUMP_PENDING_SECONDS)
         return _collect(self._dump_r, DUMP_WAIT_SECONDS, DUMP_IDLE_SECONDS, MAX_DUMP_BYTES)
 
     def _worker_pid(self) -> int | None:
@@ -259,6 +269,30 @@ def _drain(fd: int, limit: int = 1 << 20) -> None:
         if not data:
             return
         limit -= len(data)
+
+
+def _signal_pending(pid: int, signum: int) -> bool:
+    """True while `signum` waits to be taken by process `pid` (/proc/PID/status): sent but not yet
+    delivered, because no thread of it has run since or every thread blocks it. False once it is taken or
+    discarded (ignored), and for a process that is stopped, gone or unreadable: it will not take it soon."""
+    try:
+        with open(f"/proc/{pid}/status") as status:
+            fields = dict(line.split(":", 1) for line in status if ":" in line)
+        state = fields.get("State", "").split()
+        if not state or state[0] in ("T", "t", "Z", "X"):
+            return False
+        bit = 1 << (signum - 1)
+        return any(int(fields.get(name, "0").strip(), 16) & bit for name in ("ShdPnd", "SigPnd"))
+    except (OSError, ValueError):
+        return False
+
+
+def _wait_while(condition: Callable[[], bool], fd: int, seconds: float, step: float = 0.005) -> None:
+    """Wait until `condition()` is false, `fd` has something to read, or `seconds` have passed."""
+    end = time.monotonic() + seconds
+    while condition() and time.monotonic() < end:
+        if _wait(fd, select.POLLIN, step):
+            return
 
 
 def _collect(fd: int, first_wait: float, idle: float, cap: int) -> bytes:

@@ -1,4 +1,5 @@
 """Attack (not really): code stuck in a method, spinning or sleeping; the timeout must name the line."""
+import signal
 import time
 
 
@@ -30,6 +31,16 @@ class Spinner:
     def doze(self):
         time.sleep(60)  # STUCK: doze
 
+    def late(self, seconds=1.0):
+        # A worker that takes the stack-dump signal late, as one waiting for the CPU on a loaded machine
+        # does: the signal stays pending while blocked, and is taken at the unblock.
+        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGUSR1})
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            pass
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGUSR1})  # STUCK: late
+        while True: pass  # noqa: E701
+
 
 def attack(how="spin", **args):
-    return getattr(Spinner(), how)()
+    return getattr(Spinner(), how)(**args)
