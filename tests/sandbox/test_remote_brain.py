@@ -85,7 +85,8 @@ def test_forged_debug_values_reach_the_trace_only_as_declared_kinds(shared_dir, 
     forge = ("        from simiam.control.local_brain import LocalBrain\n"
              f"        LocalBrain.step = lambda self, readings: {junk}\n")
     folder = _broken(shared_dir, forge)
-    with StudentSession(3, folder, sandbox=one_mode) as session:
+    # each step carries about 1 MB of forged JSON back: 0.2 s with both cores busy, so 10 s per step
+    with StudentSession(3, folder, Limits(call_seconds=10.0), sandbox=one_mode) as session:
         steps = _run(RemoteBrain(session, SETTINGS), seconds=0.5)
     assert "junk" not in steps and {len(s) for s in steps["state"][2:]} == {80}
     for name in ("v", "w", "theta_g", "u_ao", "ir_points_wf"):
