@@ -13,6 +13,11 @@ import zipfile
 from pathlib import Path
 
 HERE = Path(__file__).parent
+# The wall budget of a batch test in which one submission must run out of time while another must finish:
+# a fake grading takes milliseconds, but the budget also covers starting (or restarting) the grading
+# process, 0.05 s of CPU and up to 0.6 s of wall time with both cores busy (four busy loops on two
+# cores). Six seconds is ten times that; a test pays it once for each submission it lets hang.
+HANG_BUDGET_S = 6.0
 
 
 def load_wrong() -> object:

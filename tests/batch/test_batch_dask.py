@@ -6,7 +6,7 @@ import json
 from pathlib import Path
 
 import pytest
-from batch_helpers import make_class
+from batch_helpers import HANG_BUDGET_S, make_class
 
 from grader.batch import runner
 from grader.batch.executors import DaskExecutor, ExecutorError
@@ -31,13 +31,13 @@ def test_dask_matches_local(tmp_path: Path, monkeypatch) -> None:
     monkeypatch.setattr(runner, "grader_fingerprint", lambda: "fake-grader")
     answers = {"a": "score 3", "b": "score 10", "c": "crash", "d": "hang", "e": "invalid"}
     make_class(tmp_path / "class", answers, zipped=("b",))
-    base = {"week": 3, "batch_dir": tmp_path / "class", "seed": 3, "quiet": True, "budget_s": 3.0}
+    base = {"week": 3, "batch_dir": tmp_path / "class", "seed": 3, "quiet": True, "budget_s": HANG_BUDGET_S}
     run_batch(BatchOptions(**base, out=tmp_path / "local", jobs=2), grade_fn=FAKE)
     with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, protocol="tcp://",
                                   host="127.0.0.1",
                                   dashboard_address=None) as cluster, distributed.Client(cluster) as client:
         report = run_batch(BatchOptions(**base, out=tmp_path / "dask", executor="dask"), grade_fn=FAKE,
-                           executor=DaskExecutor(None, 3.0, client=client))
+                           executor=DaskExecutor(None, HANG_BUDGET_S, client=client))
     assert report["executor"] == "dask"
     local, dask = per_student(tmp_path / "local"), per_student(tmp_path / "dask")
     assert local == dask

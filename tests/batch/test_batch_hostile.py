@@ -15,7 +15,7 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from batch_helpers import CASES, StopAfterOne, hostile, make_class, remove_deep_chain
+from batch_helpers import CASES, HANG_BUDGET_S, StopAfterOne, hostile, make_class, remove_deep_chain
 
 from grader.batch import names, pool, runner, store, submissions, zips
 from grader.batch.names import SubmissionRefused, student_stem
@@ -156,7 +156,7 @@ def test_a_killed_grading_process_leaves_no_temp_folder(tmp_path: Path, monkeypa
     make_class(tmp_path / "class", {"leaky": f"leak {where}", "honest": "score 3"})
     if keep:
         monkeypatch.setattr(pool, "sweep_scratch", wrong.keep_scratch)
-    report = run_batch(options(tmp_path, budget_s=3.0), grade_fn=FAKE)
+    report = run_batch(options(tmp_path, budget_s=HANG_BUDGET_S), grade_fn=FAKE)
     assert report["per_student"]["leaky"]["status"] == "timeout"
     folder = Path(where.read_text())
     assert folder.is_relative_to(tempfile.gettempdir())

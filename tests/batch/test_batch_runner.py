@@ -15,7 +15,7 @@ import time
 from pathlib import Path
 
 import pytest
-from batch_helpers import HERE, StopAfterOne, make_class, make_zip
+from batch_helpers import HANG_BUDGET_S, HERE, StopAfterOne, make_class, make_zip
 
 from grader.batch import cache, pool, runner
 from grader.batch.runner import BatchError, BatchOptions, run_batch
@@ -132,9 +132,9 @@ def test_results_do_not_depend_on_jobs(klass: Path) -> None:
 
 def test_hung_grading_is_a_timeout(tmp_path: Path) -> None:
     make_class(tmp_path / "class", {"slow": "hang", "quick": "score 2"})
-    run_batch(options(tmp_path, budget_s=1.5), grade_fn=FAKE)
+    run_batch(options(tmp_path, budget_s=HANG_BUDGET_S), grade_fn=FAKE)
     slow = json.loads((tmp_path / "out" / "slow.json").read_text())
-    assert slow["status"] == "timeout" and slow["score"] == 0.0 and "1.5 s" in slow["message"]
+    assert slow["status"] == "timeout" and slow["score"] == 0.0 and f"{HANG_BUDGET_S:g} s" in slow["message"]
     assert json.loads((tmp_path / "out" / "quick.json").read_text())["status"] == "graded"
 
 
@@ -176,7 +176,9 @@ sys.exit(runner.main(args))
 
 
 def start_runner(tmp_path: Path) -> subprocess.Popen:
-    answers = {"a": "score 1", "b": "score 2", "c": "score 3", "d": "sleep 60", "e": "sleep 60"}
+    # d writes where it copied its files as it starts, then hangs: the sign that d is being graded
+    answers = {"a": "score 1", "b": "score 2", "c": "score 3", "d": f"leak {tmp_path / 'd-began'}",
+               "e": "sleep 60"}
     make_class(tmp_path / "class", answers)
     code = RUNNER.format(here=str(HERE), klass=str(tmp_path / "class"), out=str(tmp_path / "out"))
     return subprocess.Popen([sys.executable, "-c", code], start_new_session=True)
@@ -194,7 +196,7 @@ def wait_for(path: Path) -> None:
 def test_killed_batch_keeps_what_was_graded_and_resumes(tmp_path: Path, how: int, monkeypatch) -> None:
     proc = start_runner(tmp_path)
     wait_for(tmp_path / "out" / "c.json")
-    time.sleep(0.3)                           # d is being graded now
+    wait_for(tmp_path / "d-began")            # d is being graded now
     os.kill(proc.pid, how)
     code = proc.wait(timeout=30)
     assert code == (130 if how == signal.SIGTERM else -signal.SIGKILL)
