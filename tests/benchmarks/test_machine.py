@@ -57,12 +57,12 @@ def test_a_grandchild_killed_with_its_parent_is_counted():
     with Stopwatch() as sw:
         child = subprocess.Popen([sys.executable, "-c", _TREE, str(burn)], stdout=subprocess.PIPE, text=True)
         grandchild = int(child.stdout.readline())
-        # wait (by its CPU, not by the clock) until the grandchild has burned nearly all it was told to
-        # (/proc counts in ticks of 10 ms, truncated)
+        # wait (by its CPU as the Stopwatch's own sampler saw it, not by the clock) until the sampler has
+        # counted nearly all the grandchild was told to burn (/proc counts in ticks of 10 ms, truncated):
+        # a fixed pause once it had burned could end before a sampler thread starved on busy cores looked
         deadline = time.monotonic() + 60
-        while _cpu_of(grandchild) < burn - 0.05 and time.monotonic() < deadline:
-            time.sleep(0.05)
-        time.sleep(0.05)  # one more sampling interval or so
+        while _sampled(sw, grandchild) < burn - 0.05 and time.monotonic() < deadline:
+            time.sleep(0.02)
         child.kill()
         child.wait()
         os.kill(grandchild, signal.SIGKILL)
@@ -83,10 +83,9 @@ def test_median_and_ratio():
     assert ratio(1.0, 0.0) != ratio(1.0, 0.0)  # NaN: a baseline too small to divide by
 
 
-def _cpu_of(pid: int) -> float:
-    with open(f"/proc/{pid}/stat") as f:
-        fields = f.read().rpartition(")")[2].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+def _sampled(sw: Stopwatch, pid: int) -> float:
+    """The CPU seconds of `pid` in the Stopwatch's process-tree sampler's last look at it."""
+    return max((cpu for (seen, _start), cpu in list(sw._tree.seen.items()) if seen == pid), default=0.0)
 
 
 def _reaped_children_cpu() -> float:
