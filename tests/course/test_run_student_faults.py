@@ -34,6 +34,7 @@ def test_an_endless_loop_is_stopped_where_grade_says_it_is(tmp_path: Path, capsy
              "(an endless loop or a long wait?)")
     assert "your code did not answer in time: no answer within 0.5 s, the time limit per step" in err
     assert where in err
+    # the loop is at the first step: only loading answers within the 0.5 s (ms; test_timeout_location)
     graded = grade_submission(3, folder, seed=1, only="week3.go_to_goal.reach_goals",
                               limits=Limits(call_seconds=0.5, total_seconds=20.0))
     assert where in graded["checks"][0]["message"]

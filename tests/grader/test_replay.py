@@ -55,6 +55,7 @@ def test_the_snippet_of_a_wrong_answer_prints_what_the_check_saw(tmp_path: Path)
 
 def test_a_property_timeout_has_a_replay_line(tmp_path: Path) -> None:
     folder = mistakes.build("stuck", "week2_endless_loop", tmp_path, 2, "week2")
+    # the loop is at the first call: only loading answers within 0.5 s (ms; see test_timeout_location)
     fast = Limits(call_seconds=0.5, total_seconds=20.0)
     result = grade_submission(2, folder, seed=1, only="week2.uni_to_diff.straight", limits=fast)
     check = result["checks"][0]
