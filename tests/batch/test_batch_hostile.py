@@ -135,7 +135,10 @@ def test_names_a_student_cannot_use() -> None:
 
 def test_one_students_files_stay_under_2_mb(tmp_path: Path, monkeypatch, wrong) -> None:
     make_class(tmp_path / "class", {"flood": "flood 6000000", "honest": "score 7"})
-    run_batch(options(tmp_path), grade_fn=FAKE)
+    # the flood's result is some 50 MB of JSON through the pipe: up to 7 s with eight busy loops on two
+    # cores, and nothing here hangs, so a budget far above that costs nothing
+    budget = 120.0
+    run_batch(options(tmp_path, budget_s=budget), grade_fn=FAKE)
     out = tmp_path / "out"
     for path in (out / "flood.json", out / "flood.html", out / "gradescope" / "flood" / "results.json"):
         assert path.stat().st_size <= 2_000_000, path
@@ -144,7 +147,7 @@ def test_one_students_files_stay_under_2_mb(tmp_path: Path, monkeypatch, wrong) 
     row = next(line for line in (out / "gradebook.csv").read_text().splitlines() if line.startswith("flood"))
     assert len(row) <= 2000
     monkeypatch.setattr(runner, "bound_result", wrong.no_bound)
-    run_batch(options(tmp_path, out=tmp_path / "unbounded"), grade_fn=FAKE)
+    run_batch(options(tmp_path, out=tmp_path / "unbounded", budget_s=budget), grade_fn=FAKE)
     assert (tmp_path / "unbounded" / "flood.json").stat().st_size > 2_000_000
 
 
