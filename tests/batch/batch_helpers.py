@@ -15,8 +15,9 @@ from pathlib import Path
 HERE = Path(__file__).parent
 # The wall budget of a batch test in which one submission must run out of time while another must finish:
 # a fake grading takes milliseconds, but the budget also covers starting (or restarting) the grading
-# process, 0.05 s of CPU and up to 0.6 s of wall time with both cores busy (four busy loops on two
-# cores). Six seconds is ten times that; a test pays it once for each submission it lets hang.
+# process, 0.05 s of CPU yet up to 0.6 s of wall time with both cores busy (the slowest finishing task of
+# these tests took 0.28 s with eight busy loops on two cores, against budgets of 1.5 to 3 s before). Six
+# seconds is ten times the worst; a test pays it once for each submission it lets hang.
 HANG_BUDGET_S = 6.0
 
 
