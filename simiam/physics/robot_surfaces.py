@@ -39,7 +39,7 @@ def _near_parallel(surfaces: tuple[tuple[Point, ...], ...], spans: tuple[float, 
 class RobotSurfaces:
     """The base plate and IR cones of `spec` (robot frame) against `obstacles`."""
 
-    def __init__(self, spec: RobotSpec, obstacles: Sequence[Sequence[Point]]) -> None:
+    def __init__(self, spec: RobotSpec, obstacles: Sequence[Sequence[Sequence[float]]]) -> None:
         self.spec = spec
         self.obstacles = ObstacleEdges(obstacles)
         self.plate = list(spec.base_plate)
