@@ -18,6 +18,7 @@ from grader import reference as ref
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import fmt, vector
 from grader.domains import Floats, Integers, SampledFrom
+from grader.margins import Limit, Margins
 from grader.properties import run_property
 from simiam.world import World, load_world
 
@@ -28,6 +29,7 @@ ALL = ("differential_drive.py", "quickbot.py", "go_to_angle.py", "go_to_goal.py"
 D_STOP = 0.05        # the arrival radius, judged on the TRUE position
 ROBOT_D_STOP = 0.02  # the supervisor stops a little inside it, so odometry drift cannot stop it just outside
 MAX_RATE = 4.0       # switches per second: the reference solution needs at most 1.5 in every run here
+SWITCH_RATE = Limit("switch rate", "1/s", MAX_RATE, above=False)
 HIDDEN_RUNS = 3      # per kind (blending, switching), drawn per seed from the hidden set
 POSE = (0.2, -0.1, 0.4)  # where the robot is when the blend is probed
 STATES = ("go_to_goal", "avoid_obstacles", "ao_and_gtg", "stop")
@@ -292,10 +294,11 @@ def _words(r: scenarios.Run, figures: dict) -> tuple[bool, str]:
 
 def _reach(mode: str, check_id: str):
     def run(ctx: Context) -> Outcome:
-        good, lines, details, done, notes = 0, [], [], [], set()
+        good, lines, details, done, notes, margins = 0, [], [], [], set(), Margins()
         for goal in VISIBLE_GOALS[mode]:
             r, figures, note = _drive(ctx, check_id, mode, goal)
             scenarios.keep(ctx, check_id, r)
+            scenarios.add_margins(margins, r, ctx.config.seconds)
             ok, text = _words(r, figures)
             good += ok
             lines.append(f"({goal[0]:g}, {goal[1]:g}) {text}")
@@ -305,8 +308,8 @@ def _reach(mode: str, check_id: str):
         message = "; ".join(lines) + "".join(f". Note: {n}" for n in sorted(notes) if n)
         if good < len(done) and not any(r.problem for r in done):
             message += f". {_RUN_HINT[mode]}"
-        return Outcome(good / len(done), message, {"runs": details, "traces": scenarios.trace_keys(done)},
-                       status=scenarios.status_of(done))
+        found = {"runs": details, "traces": scenarios.trace_keys(done), "margins": margins.to_json()}
+        return Outcome(good / len(done), message, found, status=scenarios.status_of(done))
 
     run.__name__ = f"{mode}_reach"
     return run
@@ -322,7 +325,7 @@ _RUN_HINT = {
 def switch_rate(ctx: Context) -> Outcome:
     """The switching runs to the visible goals that get there switch at most MAX_RATE times per second
     (a run that never gets there says nothing about chattering: the reach check scores it)."""
-    lines, details, worst = [], [], 0.0
+    lines, details, worst, margins = [], [], 0.0, Margins()
     for goal in VISIBLE_GOALS["switching"]:
         r, figures, _ = _drive(ctx, "week5.switching.reach_goal", "switching", goal)
         if r.problem:
@@ -330,6 +333,7 @@ def switch_rate(ctx: Context) -> Outcome:
         if not r.reached or r.collision is not None:
             continue
         worst = max(worst, figures["switch_rate"])
+        margins.add(SWITCH_RATE, figures["switch_rate"], r.label)
         lines.append(f"({goal[0]:g}, {goal[1]:g}) {figures['switches']} switches in {r.trace.seconds:.1f} s")
         details.append(figures)
     if not details:
@@ -340,7 +344,8 @@ def switch_rate(ctx: Context) -> Outcome:
                f"{worst:.1f} switches per second, more than {MAX_RATE:g}. Hint: the robot chatters between "
                "controllers (a state change every step or two): each step must pick the state from the "
                "events alone; the replay names the state at each step")
-    return Outcome(float(ok), "; ".join(lines) + f": {verdict}", {"runs": details, "max_rate": worst})
+    return Outcome(float(ok), "; ".join(lines) + f": {verdict}",
+                   {"runs": details, "max_rate": worst, "margins": margins.to_json()})
 
 
 def hidden_runs(mode: str):
@@ -354,11 +359,14 @@ def hidden_runs(mode: str):
         pool = [v for v in data["variants"] if v["mode"] == mode]
         picks = random.Random(f"{ctx.seed}:week5-{mode}").sample(pool, min(HIDDEN_RUNS, len(pool)))
         check_id = f"week5.{mode}.hidden"
-        good, lines, details, done = 0, [], [], []
+        good, lines, details, done, margins = 0, [], [], [], Margins()
         for v in picks:
             goal, start = tuple(v["goal"]), tuple(v["start"])
             r, figures, _ = _drive(ctx, check_id, mode, goal, start)
             scenarios.keep(ctx, check_id, r)
+            scenarios.add_margins(margins, r, ctx.config.seconds)
+            if mode == "switching" and not r.problem and r.reached:
+                margins.add(SWITCH_RATE, figures["switch_rate"], r.label)
             ok, text = _words(r, figures)
             if ok and mode == "switching" and figures["switch_rate"] > MAX_RATE:
                 ok, text = False, f"{text}, but with {figures['switch_rate']:.1f} switches per second"
@@ -366,7 +374,7 @@ def hidden_runs(mode: str):
             lines.append(f"{r.label}: {text}")
             details.append({"variant": v, **figures})
             done.append(r)
-        found = {"runs": details, "traces": scenarios.trace_keys(done)}
+        found = {"runs": details, "traces": scenarios.trace_keys(done), "margins": margins.to_json()}
         return Outcome(good / len(done), "; ".join(lines), found, status=scenarios.status_of(done))
 
     run.__name__ = f"{mode}_hidden"
