@@ -139,13 +139,14 @@ def arrival(seconds: float) -> Limit:
     return Limit("arrival time", "s", seconds, above=False)
 
 
-def add_margins(margins: Margins, r: Run, seconds: float | None = None) -> None:
-    """The run's clearance and, with `seconds` (a run to a goal), its arrival time against their limits. A
-    run the student's code broke has no figures: its verdict is the error, not a distance to a limit."""
+def add_margins(margins: Margins, r: Run, seconds: float | None = None, clearance: Limit = CLEARANCE) -> None:
+    """The run's clearance (against `clearance`: by default more than 0, no collision) and, with `seconds`
+    (a run to a goal), its arrival time against their limits. A run the student's code broke has no
+    figures: its verdict is the error, not a distance to a limit."""
     if r.problem:
         return
     if clearance_of(r) is not None:
-        margins.add(CLEARANCE, clearance_of(r), r.label)
+        margins.add(clearance, clearance_of(r), r.label)
     if seconds is not None:
         margins.add(arrival(seconds), r.t_goal if r.reached else None, r.label)
 

@@ -1,7 +1,8 @@
 """Week 5 checks: the blend of u_gtg and u_ao (between the two, and smooth), the switching (the right state
 for every combination of events), and runs to goals in the week-5 world, blending and switching: the goal
-reached on the TRUE pose, no collision, and (switching) not too many switches per second; hidden runs from
-other start poses to other goals, each one the reference solution completes.
+reached on the TRUE pose, never closer than MIN_CLEARANCE to an obstacle, and (switching) not too many
+switches per second; hidden runs from other start poses to other goals, each one the reference solution
+completes.
 
 The blend is probed with u_ao and u_gtg chosen by the grader (grader/inside/probes_week5.py), so a week-4
 mistake cannot change it; the runs use the course's versions of the earlier weeks' parts (grader.earlier).
@@ -29,6 +30,14 @@ ALL = ("differential_drive.py", "quickbot.py", "go_to_angle.py", "go_to_goal.py"
 D_STOP = 0.05        # the arrival radius, judged on the TRUE position
 ROBOT_D_STOP = 0.02  # the supervisor stops a little inside it, so odometry drift cannot stop it just outside
 MAX_RATE = 4.0       # switches per second: the reference solution needs at most 1.5 in every run here
+# m: the closest a run may pass an obstacle. Over every visible and hidden run, every BLAS kernel and starts
+# nudged by up to 1 mm, the reference keeps at least 20 mm and the normalised blend (a correct alternative,
+# tests/data/wrong/good_week5_blend_normalised.patch) 12 mm, while a blend blind to obstacles
+# (week5_blend_only_goal) passes the bar on the switching run to (-1, 1) within 0 to 3 mm. Before this limit
+# that run's verdict was whether the blind blend touched the bar, which flipped with the BLAS kernel
+# (issue 20); 7 mm sits a factor of about 2 from either side.
+MIN_CLEARANCE = 0.007
+CLEARANCE = Limit("clearance", "m", MIN_CLEARANCE, above=True)
 SWITCH_RATE = Limit("switch rate", "1/s", MAX_RATE, above=False)
 HIDDEN_RUNS = 3      # per kind (blending, switching), drawn per seed from the hidden set
 POSE = (0.2, -0.1, 0.4)  # where the robot is when the blend is probed
@@ -286,6 +295,10 @@ def _words(r: scenarios.Run, figures: dict) -> tuple[bool, str]:
         return False, r.problem
     if r.collision is not None:
         return False, f"collided at t = {r.collision['t']:.2f} s"
+    gap = figures.get("min_clearance")
+    if gap is not None and gap < MIN_CLEARANCE:
+        return False, (f"came within {1000 * gap:.1f} mm of an obstacle (at least "
+                       f"{1000 * MIN_CLEARANCE:g} mm expected: a real robot never knows its pose that well)")
     if not r.reached:
         return False, (f"not reached in {figures['seconds']:.0f} s, {figures['final_distance']:.2f} m away "
                        "at the end")
@@ -298,7 +311,7 @@ def _reach(mode: str, check_id: str):
         for goal in VISIBLE_GOALS[mode]:
             r, figures, note = _drive(ctx, check_id, mode, goal)
             scenarios.keep(ctx, check_id, r)
-            scenarios.add_margins(margins, r, ctx.config.seconds)
+            scenarios.add_margins(margins, r, ctx.config.seconds, CLEARANCE)
             ok, text = _words(r, figures)
             good += ok
             lines.append(f"({goal[0]:g}, {goal[1]:g}) {text}")
@@ -318,7 +331,8 @@ def _reach(mode: str, check_id: str):
 _RUN_HINT = {
     "blending": "Hint: the blend steers the whole way; check the blend checks above, and replay the run",
     "switching": "Hint: the switching check above says which state is wrong (at the goal stop; unsafe: "
-                 "avoid_obstacles; at an obstacle: ao_and_gtg; otherwise go_to_goal)",
+                 "avoid_obstacles; at an obstacle: ao_and_gtg; otherwise go_to_goal); if it passes, the "
+                 "blend steers ao_and_gtg (the blend checks above)",
 }
 
 
@@ -364,7 +378,7 @@ def hidden_runs(mode: str):
             goal, start = tuple(v["goal"]), tuple(v["start"])
             r, figures, _ = _drive(ctx, check_id, mode, goal, start)
             scenarios.keep(ctx, check_id, r)
-            scenarios.add_margins(margins, r, ctx.config.seconds)
+            scenarios.add_margins(margins, r, ctx.config.seconds, CLEARANCE)
             if mode == "switching" and not r.problem and r.reached:
                 margins.add(SWITCH_RATE, figures["switch_rate"], r.label)
             ok, text = _words(r, figures)
