@@ -11,8 +11,10 @@ figure it judged, its run nearest the limit, in its result's details:
 
 `margin` is the distance from the limit in the figure's unit, positive on the passing side, negative on the
 failing side; `value` (and `margin`) is None where the run never produced the figure (never arrived, never
-settled), which fails. `grade selfcheck` prints them: how far the reference is from each limit, and how far
-each caught wrong version is on the failing side.
+settled, ended before it was measured), which fails. A clearance of 0 is a collision: how deep the robot
+would have gone is not measured, so a collision's margin is 0, not a distance. `grade selfcheck` prints
+them: how far the reference is from each limit, and how far each caught wrong version is on the failing
+side.
 
 A margin describes one run. It is not a bound on what a perturbation does: a closed loop that switches
 between controllers (weeks 5 and 7) can turn a one-bit difference into another path. Those verdicts are
@@ -88,23 +90,25 @@ def passes(entry: dict[str, Any]) -> bool:
     return margin > 0 if entry.get("passes") in ("over", "under") else margin >= 0
 
 
-_SIDES = {"above": "at least", "over": "more than", "below": "at most", "under": "less than"}
+_SIDES = {"above": ">=", "over": ">", "below": "<=", "under": "<"}
 
 
 def words(entry: dict[str, Any]) -> str:
-    """One margin for people: 'clearance 0.0236 m (more than 0 m: 0.0236 m to spare; switching to (-1,
-    1))'. Works on any dict of that shape (a result read back from JSON)."""
+    """One margin for people: 'clearance 0.0236 m (limit > 0 m): 0.0236 m to spare [switching to (-1, 1)]'.
+    Works on any dict of that shape (a result read back from JSON)."""
     unit = f" {entry['unit']}" if entry.get("unit") else ""
     value, margin = entry.get("value"), entry.get("margin")
     shown = "none" if value is None else f"{value:.4g}{unit}"
     if margin is None:
-        how = "fails: the run never reached it"
+        how = "the run ended without it"
     elif passes(entry):
-        how = f"{margin:.4g}{unit} to spare"
+        how = f"{margin:.3g}{unit} to spare"
+    elif entry.get("figure") == CLEARANCE.figure and value == 0:
+        how = "touching: a collision"
     elif margin == 0:
         how = "at the limit, which fails"
     else:
-        how = f"{-margin:.4g}{unit} on the failing side"
+        how = f"{-margin:.3g}{unit} past it"
     side = _SIDES.get(str(entry.get("passes")), "?")
-    run = f"; {entry['run']}" if entry.get("run") else ""
-    return f"{entry.get('figure')} {shown} ({side} {entry.get('limit'):g}{unit}: {how}{run})"
+    run = f" [{entry['run']}]" if entry.get("run") else ""
+    return f"{entry.get('figure')} {shown} (limit {side} {entry.get('limit'):g}{unit}): {how}{run}"
