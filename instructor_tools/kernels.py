@@ -74,6 +74,11 @@ def runnable() -> list[str]:
     return [loads if loads in names else names[0] for loads, names in groups().items()]
 
 
+def loads(name: str) -> str:
+    """The kernel OpenBLAS loads for `name` here (what describe() reports)."""
+    return next(key.split()[0] for key, names in groups().items() if name in names)
+
+
 if __name__ == "__main__":
     for loads, names in groups().items():
         print(f"{loads:24} {', '.join(names)}")
