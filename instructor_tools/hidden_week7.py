@@ -1,6 +1,6 @@
 """Make (and check) the week-7 hidden set: goals in the trap world, the world turned about the start.
 
-    python -m instructor_tools.hidden_week7          # rewrite instructor_tools/hidden/week7.json (~10 min)
+    python -m instructor_tools.hidden_week7          # rewrite instructor_tools/hidden/week7.json (~4 min)
 
 The week-7 automaton is chaotic in the trap: whether the robot leaves a wall depends on a window of a step
 or two where progress is made and the sliding test says no, so one last bit of a BLAS kernel can send the
