@@ -54,6 +54,7 @@ class _Job:
     extra: dict[str, Any]
     traces: dict[str, dict]
     began: float
+    start_nudge: tuple[float, float] = (0.0, 0.0)
 
 
 def select_checks(week: int, hidden: bool, only: str | None = None) -> tuple[list[Check], list[Check]]:
@@ -164,12 +165,14 @@ def grade_submission(
     limits: Limits | None = None,
     replay_prefix: str | None = None,
     traces: dict[str, dict] | None = None,
+    start_nudge: tuple[float, float] = (0.0, 0.0),
 ) -> dict:
     """Grade one submission folder for course week `week` and return the result JSON (see the module doc).
 
     `hidden` also runs the hidden checks (official grading). `only`/`case` run one check, or one case of a
     property (the replay line a failing property prints). Scenario traces go into `traces` (by check id)
-    when a dict is given, and into the HTML report when `out_dir` is given.
+    when a dict is given, and into the HTML report when `out_dir` is given. `start_nudge` (dx, dy) m moves
+    the true start pose of every scenario run (Context.start_nudge; tests only, never a command line).
     """
     week = int(week)
     submission = Path(submission)
@@ -192,7 +195,7 @@ def grade_submission(
                 return _finish(result, traces, out_dir)
             try:
                 job = _Job(week, submission, seed, hidden, sandbox, case, limits, replay_prefix, selected,
-                           extra, traces, began)
+                           extra, traces, began, (float(start_nudge[0]), float(start_nudge[1])))
                 result = _grade(job, started)
             except CourseFilesMissing:
                 raise
@@ -285,6 +288,7 @@ def _grade(job: _Job, started: _Started) -> dict:
             submission=str(job.submission),
             spliced=started.spliced,
             open_session=lambda folder: _open_session(job, folder, others),
+            start_nudge=job.start_nudge,
         )
         results: list[CheckResult] = []
         timing = {}

@@ -10,7 +10,9 @@ out of the wheel (pyproject.toml packages only simiam and grader; tests/packagin
   same wheel speeds on every recorded goal and every hidden variant (tests/fidelity/test_week7_reference.py);
 - `hidden/weekN.json`: the hidden scenario variants of official grading (`grade --hidden`, batch), each
   validated against the reference solution by tests/grader/test_hidden.py (week 5: test_hidden_week5.py,
-  week 7: test_hidden_week7.py).
+  week 7: test_hidden_week7.py); `hidden_week6` and `hidden_week7` make weeks 6 and 7's with margins;
+- `kernels`: the BLAS kernels this CPU runs, grouped by what OpenBLAS really loads, for the hidden-set
+  makers and tests/grader/test_verdict_margins.py (verdicts identical under every kernel).
 
 Importable with the repository root on sys.path (`python -m pytest` from the checkout); the console
 scripts of an editable install reach it through `simiam.course.folders.instructor_tool`.

@@ -52,6 +52,10 @@ class Context:
     spliced: Any = None  # the spliced submission folder the session runs (a Path), when the engine has one
     open_session: Callable[[Any], Any] | None = None  # another session on a folder; the engine closes it
     serving: Any = None  # while grader.batched_cases runs a case: its answers (probes are sent in batches)
+    # Moves the TRUE start pose of every scenario run by (dx, dy) m, never the estimate: the proof that no
+    # verdict hangs on the last bit (tests/grader/test_verdict_margins.py). Only the grading API sets it
+    # (grade_submission's start_nudge); no command line, setting or submission reaches it.
+    start_nudge: tuple[float, float] = (0.0, 0.0)
 
     @property
     def config(self) -> Week:

@@ -6,8 +6,12 @@ import math
 
 from grader import scenarios
 from grader.checks import Check, Context, Outcome
+from grader.margins import Limit, Margins
 
 NEEDS = ("differential_drive.py", "quickbot.py", "qb_supervisor.py")
+STILL = 1e-9  # m and rad: the robot must not move at all (no motion at all is exactly 0)
+MOVED = Limit("distance moved", "m", STILL, above=False)
+TURNED = Limit("heading turned", "rad", STILL, above=False)
 
 
 def _run(ctx: Context) -> scenarios.Run:
@@ -36,17 +40,20 @@ def stays_still(ctx: Context) -> Outcome:
     x0, y0, th0 = r.trace.start
     x, y, th = r.final_pose
     moved = math.hypot(x - x0, y - y0)
-    if moved > 1e-9 or abs(th - th0) > 1e-9:
+    margins = Margins()
+    margins.add(MOVED, moved, r.label)
+    margins.add(TURNED, abs(th - th0), r.label)
+    if moved > STILL or abs(th - th0) > STILL:
         return Outcome(
             0.0,
             f"the robot moved {moved:.3f} m and turned {abs(th - th0):.3f} rad; in week 1 it "
             "should stay still",
-            {"moved": moved},
+            {"moved": moved, "margins": margins.to_json()},
         )
     return Outcome(
         1.0,
         f"the robot stayed at its start pose for {r.trace.seconds:.1f} s",
-        {"moved": moved, **_details(r)},
+        {"moved": moved, **_details(r), "margins": margins.to_json()},
     )
 
 

@@ -17,6 +17,7 @@ from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import amount, fmt, off_by, vector
 from grader.checks.odometry import ODOMETRY_CHECKS
 from grader.domains import Floats
+from grader.margins import Limit, Margins
 from grader.properties import run_property
 
 DRIVE = ("differential_drive.py",)
@@ -25,6 +26,7 @@ IR = ("quickbot.py",)
 # The reference solution and its correct variants end within 0.0054 rad of theta_d after 8 s (every
 # visible angle and 45 hidden ones); a uni_to_diff that turns at half the asked w ends 0.03 rad away.
 ANGLE_TOLERANCE = 0.02
+HEADING_ERROR = Limit("final heading error", "rad", ANGLE_TOLERANCE, above=False)
 ANGLE_PLOTS = ("trajectory", "angle")  # the report: the path, and theta against theta_d
 ANGLE_HINT = (
     "Hint: the robot turns with the w GoToAngle asks from your odometry's theta: check that uni_to_diff "
@@ -199,7 +201,7 @@ def go_to_angle_check(hidden: bool):
             angles = [rng.choice((-1, 1)) * rng.uniform(0.3, 2.8) for _ in range(3)]
         else:
             angles = [math.pi / 4, -2.0]
-        good, lines, runs = 0, [], []
+        good, lines, runs, margins = 0, [], [], Margins()
         details: dict[str, list] = {"runs": []}
         for theta_d in angles:
             settings = ctx.config.settings.with_changes(theta_d=theta_d).as_dict()
@@ -207,6 +209,9 @@ def go_to_angle_check(hidden: bool):
             runs.append(r)
             scenarios.keep(ctx, "week2.go_to_angle." + ("other_angles" if hidden else "reaches_theta_d"), r)
             err = ref.angle_diff(r.final_pose[2], theta_d)
+            scenarios.add_margins(margins, r)
+            if not r.problem:
+                margins.add(HEADING_ERROR, err, r.label)
             ok = not r.problem and r.collision is None and err <= ANGLE_TOLERANCE
             good += ok
             why = r.problem or (
@@ -222,7 +227,7 @@ def go_to_angle_check(hidden: bool):
         return Outcome(
             good / len(angles),
             "; ".join(lines) + (f". {ANGLE_HINT}" if missed else ""),
-            {**details, "traces": scenarios.trace_keys(runs)},
+            {**details, "traces": scenarios.trace_keys(runs), "margins": margins.to_json()},
             status=scenarios.status_of(runs),
         )
 

@@ -16,6 +16,7 @@ from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import WILD, fmt, vector
 from grader.checks.pid import PID_CHECKS
 from grader.domains import Floats
+from grader.margins import Limit, Margins
 from grader.properties import run_property
 
 SUPERVISOR = ("qb_supervisor.py",)
@@ -26,6 +27,8 @@ GOAL_PLOTS = ("trajectory", "heading")  # the report: the path, and theta agains
 ROBOT_D_STOP = 0.02  # the supervisor stops a little inside d_stop, so odometry drift cannot stop it outside
 SETTLE_LIMIT = 3.0
 OVERSHOOT_LIMIT = 0.10
+SETTLE = Limit("settle time", "s", SETTLE_LIMIT, above=False)
+OVERSHOOT = Limit("overshoot", "", OVERSHOOT_LIMIT, above=False)  # a fraction of theta_g
 REACH_HINT = (
     "Hint: the robot steers by your theta_g, the wrapped error and the PID terms (their own checks say which "
     "one is wrong), and ensure_w must keep w; replay the run in the report to see where it goes"
@@ -165,10 +168,11 @@ def reach_goals(hidden: bool):
             if hidden
             else [_declared_goal(ctx), (0.0, -1.0), *seeded_goals(ctx.seed, 1, "visible")]
         )
-        reached, lines, runs, done = 0, [], [], []
+        reached, lines, runs, done, margins = 0, [], [], [], Margins()
         for goal in goals:
             r = _go(ctx, check_id, goal)
             done.append(r)
+            scenarios.add_margins(margins, r, ctx.config.seconds)
             ok = r.reached and r.collision is None and not r.problem
             reached += ok
             if ok:
@@ -185,7 +189,7 @@ def reach_goals(hidden: bool):
         return Outcome(
             reached / len(goals),
             "; ".join(lines) + (f". {REACH_HINT}" if missed else ""),
-            {"runs": runs, "traces": scenarios.trace_keys(done)},
+            {"runs": runs, "traces": scenarios.trace_keys(done), "margins": margins.to_json()},
             status=scenarios.status_of(done),
         )
 
@@ -196,6 +200,10 @@ def reach_goals(hidden: bool):
 def _tracking(ctx: Context, check_id: str, goal: tuple[float, float]) -> tuple[scenarios.Run, dict]:
     r = _go(ctx, check_id, goal)  # the reach run to the same goal, when there is one
     settle, overshoot = scenarios.settle_and_overshoot(r.trace, goal)
+    margins = Margins()
+    if not r.problem:
+        margins.add(SETTLE, settle, r.label)
+        margins.add(OVERSHOOT, overshoot, r.label)
     return r, {
         "goal": list(goal),
         "settle_time": settle,
@@ -203,11 +211,18 @@ def _tracking(ctx: Context, check_id: str, goal: tuple[float, float]) -> tuple[s
         **r.metrics,
         "measured_from": "true pose and true goal heading",
         "traces": scenarios.trace_keys([r]),
+        "margins": margins.to_json(),
     }
+
+
+def _only(m: dict, figure: str) -> dict:
+    """The tracking figures with the margins of one figure (the settle check judges only the settle time)."""
+    return {**m, "margins": [e for e in m["margins"] if e["figure"] == figure]}
 
 
 def settle_time(ctx: Context) -> Outcome:
     r, m = _tracking(ctx, "week3.pid.settle_time", (0.0, -1.0))
+    m = _only(m, SETTLE.figure)
     if r.problem:
         return Outcome(0.0, r.problem, m, status=scenarios.status_of([r]))
     if m["settle_time"] is None:
@@ -223,6 +238,7 @@ def settle_time(ctx: Context) -> Outcome:
 
 def overshoot(ctx: Context) -> Outcome:
     r, m = _tracking(ctx, "week3.pid.settle_time", (0.0, -1.0))
+    m = _only(m, OVERSHOOT.figure)
     if r.problem:
         return Outcome(0.0, r.problem, m, status=scenarios.status_of([r]))
     ok = m["overshoot"] <= OVERSHOOT_LIMIT

@@ -19,6 +19,7 @@ from grader import scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import fmt, matrix, number, vector
 from grader.domains import Floats, Lists
+from grader.margins import Limit, Margins
 from grader.properties import run_property
 from simiam.world import World, load_world
 
@@ -34,6 +35,7 @@ ALL = (
 # The scenario's v and first state and its length come from the week's declaration (ctx.config).
 HIDDEN_SECONDS = 30.0  # each hidden variant was checked for 60 s with the reference solution
 MIN_PATH = 1.0  # "really moving": at least this many metres driven in the run
+PATH = Limit("path length", "m", MIN_PATH, above=True)
 POSE = [0.3, -0.2, 0.7]
 COLLISION_HINT = (
     "Hint: the robot steers along u_ao: the checks of the IR points, the gains, u_ao and theta_ao say which "
@@ -309,7 +311,7 @@ def _variant(world: World, turn: int, of: int, mirror: bool) -> World:
 
 
 def _avoid(
-    ctx: Context, check_id: str, world: World, label: str, seconds: float
+    ctx: Context, check_id: str, world: World, label: str, seconds: float, margins: Margins
 ) -> tuple[bool, str, dict, scenarios.Run]:
     r = scenarios.run(ctx, label, ctx.config.settings.as_dict(), seconds, world=world)
     scenarios.keep(ctx, check_id, r)
@@ -320,6 +322,9 @@ def _avoid(
         "problem": r.problem,
         "traces": scenarios.trace_keys([r]),
     }
+    scenarios.add_margins(margins, r)
+    if not r.problem:
+        margins.add(PATH, length, r.label)
     if r.problem:
         return False, r.problem, details, r
     if r.collision is not None:
@@ -337,11 +342,13 @@ def _avoid(
 
 
 def week4_world(ctx: Context) -> Outcome:
+    margins = Margins()
     ok, text, details, r = _avoid(
-        ctx, "week4.avoid.week4_world", load_world(ctx.config.world), "week-4 world", ctx.config.seconds
+        ctx, "week4.avoid.week4_world", load_world(ctx.config.world), "week-4 world", ctx.config.seconds,
+        margins,
     )
-    return Outcome(float(ok), f"week-4 world, v = {ctx.config.settings.v}: {text}", details,
-                   status=scenarios.status_of([r]))
+    return Outcome(float(ok), f"week-4 world, v = {ctx.config.settings.v}: {text}",
+                   {**details, "margins": margins.to_json()}, status=scenarios.status_of([r]))
 
 
 def other_starts(ctx: Context) -> Outcome:
@@ -353,10 +360,11 @@ def other_starts(ctx: Context) -> Outcome:
             0.0, "the instructor's hidden set is not here (it runs at official grading)", status="error"
         )
     picks = random.Random(f"{ctx.seed}:week4-variants").sample(data["variants"], 3)
-    good, lines, runs, done = 0, [], [], []
+    good, lines, runs, done, margins = 0, [], [], [], Margins()
     for v in picks:
         world = _variant(load_world("week4"), v["turn"], v["of"], v["mirror"])
-        ok, text, details, r = _avoid(ctx, "week4.avoid.other_starts", world, world.name, HIDDEN_SECONDS)
+        ok, text, details, r = _avoid(ctx, "week4.avoid.other_starts", world, world.name, HIDDEN_SECONDS,
+                                      margins)
         good += ok
         lines.append(f"{world.name}: {text}")
         runs.append({"variant": v, **details})
@@ -364,7 +372,7 @@ def other_starts(ctx: Context) -> Outcome:
     return Outcome(
         good / 3,
         "; ".join(lines),
-        {"runs": runs, "traces": scenarios.trace_keys(done)},
+        {"runs": runs, "traces": scenarios.trace_keys(done), "margins": margins.to_json()},
         status=scenarios.status_of(done),
     )
 

@@ -1,7 +1,8 @@
 """Week 5 checks: the blend of u_gtg and u_ao (between the two, and smooth), the switching (the right state
 for every combination of events), and runs to goals in the week-5 world, blending and switching: the goal
-reached on the TRUE pose, no collision, and (switching) not too many switches per second; hidden runs from
-other start poses to other goals, each one the reference solution completes.
+reached on the TRUE pose, never closer than MIN_CLEARANCE to an obstacle, and (switching) not too many
+switches per second; hidden runs from other start poses to other goals, each one the reference solution
+completes.
 
 The blend is probed with u_ao and u_gtg chosen by the grader (grader/inside/probes_week5.py), so a week-4
 mistake cannot change it; the runs use the course's versions of the earlier weeks' parts (grader.earlier).
@@ -18,6 +19,7 @@ from grader import reference as ref
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import fmt, vector
 from grader.domains import Floats, Integers, SampledFrom
+from grader.margins import Limit, Margins
 from grader.properties import run_property
 from simiam.world import World, load_world
 
@@ -28,6 +30,15 @@ ALL = ("differential_drive.py", "quickbot.py", "go_to_angle.py", "go_to_goal.py"
 D_STOP = 0.05        # the arrival radius, judged on the TRUE position
 ROBOT_D_STOP = 0.02  # the supervisor stops a little inside it, so odometry drift cannot stop it just outside
 MAX_RATE = 4.0       # switches per second: the reference solution needs at most 1.5 in every run here
+# m: the closest a run may pass an obstacle. Over every visible and hidden run, every BLAS kernel and starts
+# nudged by up to 1 mm, the reference keeps at least 20 mm and the normalised blend (a correct alternative,
+# tests/data/wrong/good_week5_blend_normalised.patch) 12 mm, while a blend blind to obstacles
+# (week5_blend_only_goal) passes the bar on the switching run to (-1, 1) within 0 to 3 mm. Before this limit
+# that run's verdict was whether the blind blend touched the bar, which flipped with the BLAS kernel
+# (issue 20); 7 mm sits a factor of about 2 from either side.
+MIN_CLEARANCE = 0.007
+CLEARANCE = Limit("clearance", "m", MIN_CLEARANCE, above=True)
+SWITCH_RATE = Limit("switch rate", "1/s", MAX_RATE, above=False)
 HIDDEN_RUNS = 3      # per kind (blending, switching), drawn per seed from the hidden set
 POSE = (0.2, -0.1, 0.4)  # where the robot is when the blend is probed
 STATES = ("go_to_goal", "avoid_obstacles", "ao_and_gtg", "stop")
@@ -284,6 +295,10 @@ def _words(r: scenarios.Run, figures: dict) -> tuple[bool, str]:
         return False, r.problem
     if r.collision is not None:
         return False, f"collided at t = {r.collision['t']:.2f} s"
+    gap = figures.get("min_clearance")
+    if gap is not None and gap < MIN_CLEARANCE:
+        return False, (f"came within {1000 * gap:.1f} mm of an obstacle (at least "
+                       f"{1000 * MIN_CLEARANCE:g} mm expected: a real robot never knows its pose that well)")
     if not r.reached:
         return False, (f"not reached in {figures['seconds']:.0f} s, {figures['final_distance']:.2f} m away "
                        "at the end")
@@ -292,10 +307,11 @@ def _words(r: scenarios.Run, figures: dict) -> tuple[bool, str]:
 
 def _reach(mode: str, check_id: str):
     def run(ctx: Context) -> Outcome:
-        good, lines, details, done, notes = 0, [], [], [], set()
+        good, lines, details, done, notes, margins = 0, [], [], [], set(), Margins()
         for goal in VISIBLE_GOALS[mode]:
             r, figures, note = _drive(ctx, check_id, mode, goal)
             scenarios.keep(ctx, check_id, r)
+            scenarios.add_margins(margins, r, ctx.config.seconds, CLEARANCE)
             ok, text = _words(r, figures)
             good += ok
             lines.append(f"({goal[0]:g}, {goal[1]:g}) {text}")
@@ -305,8 +321,8 @@ def _reach(mode: str, check_id: str):
         message = "; ".join(lines) + "".join(f". Note: {n}" for n in sorted(notes) if n)
         if good < len(done) and not any(r.problem for r in done):
             message += f". {_RUN_HINT[mode]}"
-        return Outcome(good / len(done), message, {"runs": details, "traces": scenarios.trace_keys(done)},
-                       status=scenarios.status_of(done))
+        found = {"runs": details, "traces": scenarios.trace_keys(done), "margins": margins.to_json()}
+        return Outcome(good / len(done), message, found, status=scenarios.status_of(done))
 
     run.__name__ = f"{mode}_reach"
     return run
@@ -315,14 +331,15 @@ def _reach(mode: str, check_id: str):
 _RUN_HINT = {
     "blending": "Hint: the blend steers the whole way; check the blend checks above, and replay the run",
     "switching": "Hint: the switching check above says which state is wrong (at the goal stop; unsafe: "
-                 "avoid_obstacles; at an obstacle: ao_and_gtg; otherwise go_to_goal)",
+                 "avoid_obstacles; at an obstacle: ao_and_gtg; otherwise go_to_goal); if it passes, the "
+                 "blend steers ao_and_gtg (the blend checks above)",
 }
 
 
 def switch_rate(ctx: Context) -> Outcome:
     """The switching runs to the visible goals that get there switch at most MAX_RATE times per second
     (a run that never gets there says nothing about chattering: the reach check scores it)."""
-    lines, details, worst = [], [], 0.0
+    lines, details, worst, margins = [], [], 0.0, Margins()
     for goal in VISIBLE_GOALS["switching"]:
         r, figures, _ = _drive(ctx, "week5.switching.reach_goal", "switching", goal)
         if r.problem:
@@ -330,6 +347,7 @@ def switch_rate(ctx: Context) -> Outcome:
         if not r.reached or r.collision is not None:
             continue
         worst = max(worst, figures["switch_rate"])
+        margins.add(SWITCH_RATE, figures["switch_rate"], r.label)
         lines.append(f"({goal[0]:g}, {goal[1]:g}) {figures['switches']} switches in {r.trace.seconds:.1f} s")
         details.append(figures)
     if not details:
@@ -340,7 +358,8 @@ def switch_rate(ctx: Context) -> Outcome:
                f"{worst:.1f} switches per second, more than {MAX_RATE:g}. Hint: the robot chatters between "
                "controllers (a state change every step or two): each step must pick the state from the "
                "events alone; the replay names the state at each step")
-    return Outcome(float(ok), "; ".join(lines) + f": {verdict}", {"runs": details, "max_rate": worst})
+    return Outcome(float(ok), "; ".join(lines) + f": {verdict}",
+                   {"runs": details, "max_rate": worst, "margins": margins.to_json()})
 
 
 def hidden_runs(mode: str):
@@ -354,11 +373,14 @@ def hidden_runs(mode: str):
         pool = [v for v in data["variants"] if v["mode"] == mode]
         picks = random.Random(f"{ctx.seed}:week5-{mode}").sample(pool, min(HIDDEN_RUNS, len(pool)))
         check_id = f"week5.{mode}.hidden"
-        good, lines, details, done = 0, [], [], []
+        good, lines, details, done, margins = 0, [], [], [], Margins()
         for v in picks:
             goal, start = tuple(v["goal"]), tuple(v["start"])
             r, figures, _ = _drive(ctx, check_id, mode, goal, start)
             scenarios.keep(ctx, check_id, r)
+            scenarios.add_margins(margins, r, ctx.config.seconds, CLEARANCE)
+            if mode == "switching" and not r.problem and r.reached:
+                margins.add(SWITCH_RATE, figures["switch_rate"], r.label)
             ok, text = _words(r, figures)
             if ok and mode == "switching" and figures["switch_rate"] > MAX_RATE:
                 ok, text = False, f"{text}, but with {figures['switch_rate']:.1f} switches per second"
@@ -366,7 +388,7 @@ def hidden_runs(mode: str):
             lines.append(f"{r.label}: {text}")
             details.append({"variant": v, **figures})
             done.append(r)
-        found = {"runs": details, "traces": scenarios.trace_keys(done)}
+        found = {"runs": details, "traces": scenarios.trace_keys(done), "margins": margins.to_json()}
         return Outcome(good / len(done), "; ".join(lines), found, status=scenarios.status_of(done))
 
     run.__name__ = f"{mode}_hidden"

@@ -22,7 +22,8 @@ from grader import earlier, scenarios
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import describe, fmt, number
 from grader.domains import Floats, Lists, SampledFrom
-from grader.laps import median_distance
+from grader.laps import median_distance, turning_rate
+from grader.margins import CLEARANCE, Limit, Margins
 from grader.properties import run_property
 from simiam.course.weeks import get_week
 from simiam.laps import Gate, laps
@@ -45,6 +46,12 @@ SECONDS = 90.0  # the original test's length
 LAPS = 2  # the original test: back at the start twice and off again
 SETTLE = 10.0  # s: the distance to the wall is judged after the robot found the wall
 DISTANCE_TOL = 0.05  # m: the median distance to the obstacle may differ this much from d_fw
+# rad/s, the turning rate once the robot found the wall (grader.laps.turning_rate). Over every start heading,
+# side and d_fw of 0.15, 0.18 and 0.2 m, under every BLAS kernel, the reference turns at most 0.59 rad/s and
+# u_fw without its tangent (tests/data/wrong/week6_u_fw_no_tangent.patch) at least 2.46 rad/s: the cap sits
+# near their geometric mean, a factor of 2 from either (issue 20: before it, that wrong version's verdict
+# was whether it touched the wall, with 0 to 2 mm to spare, and flipped with the BLAS kernel).
+MAX_TURNING = 1.2
 IR_RANGE = (0.04, 0.3)
 LAP_HINT = (
     "Hint: the checks of p_1/p_2, u_fw_tp, u_fw_p, u_fw_pp and u_fw say which part is wrong; if they all "
@@ -388,34 +395,44 @@ def run_settings(direction: str, theta0: float, d_fw: float | None) -> dict:
 
 
 def judge_laps(
-    xs: list,
-    ys: list,
-    ts: list,
+    steps: dict,
     collision: dict | None,
     direction: str,
     d_fw: float,
     obstacle: list,
     dt: float,
 ) -> tuple[bool, str, dict]:
-    """Two laps through the gate, no collision, and the median distance to `obstacle` (its polygons) after
-    the first SETTLE seconds within DISTANCE_TOL of d_fw: (passed, why, figures)."""
+    """Two laps through the gate, no collision, and once the robot found the wall (after the first SETTLE
+    seconds) the median distance to `obstacle` (its polygons) within DISTANCE_TOL of d_fw and a turning
+    rate of at most MAX_TURNING: (passed, why, figures). `steps`: a trace's columns x, y, theta, t."""
+    xs, ys, thetas, ts = steps["x"], steps["y"], steps["theta"], steps["t"]
     counted = laps(xs, ys, gate(direction))
     done = max(counted)
     first = int(round(SETTLE / dt))
     median = median_distance(xs[first:], ys[first:], obstacle) if len(xs) > first else None
+    turning = turning_rate(thetas[first:], dt)
     t = ts[counted.index(LAPS)] if done >= LAPS else None
-    figures = {"laps": done, "d_fw": d_fw, "median_distance": median, "t_laps": t}
+    figures = {"laps": done, "d_fw": d_fw, "median_distance": median, "t_laps": t, "turning_rate": turning}
+    zigzag = turning is not None and turning > MAX_TURNING
+    swings = (
+        f"it turned on average {turning:.2f} rad/s once it found the wall (at most {MAX_TURNING:g}): it "
+        "swings across the line at d_fw instead of driving along the wall (u_fw_tp carries it along)"
+        if zigzag else ""
+    )
     if collision is not None:
-        return False, f"touched an obstacle at t = {collision['t']:.2f} s. {LAP_HINT}", figures
+        before = f"; before that {swings}" if swings else ""
+        return False, f"touched an obstacle at t = {collision['t']:.2f} s{before}. {LAP_HINT}", figures
     if done < LAPS:
         return (
             False,
             (
                 f"drove {max(done, 0)} lap(s) around the obstacle in {ts[-1]:g} s ({LAPS} expected in "
-                f"{SECONDS:g} s). {LAP_HINT}"
+                f"{SECONDS:g} s){'; ' + swings if swings else ''}. {LAP_HINT}"
             ),
             figures,
         )
+    if zigzag:
+        return False, f"{LAPS} laps in {t:.1f} s, but {swings}. {LAP_HINT}", figures
     if median is None or abs(median - d_fw) > DISTANCE_TOL:
         shown = "no" if median is None else f"a median distance of {fmt(median)} m"
         return (
@@ -433,6 +450,21 @@ def judge_laps(
     )
 
 
+# What judge_laps compares with a limit (grader.margins): the reference keeps its distance from each.
+LAPS_DONE = Limit("laps", "", LAPS, above=True)
+OFF_D_FW = Limit("median distance off d_fw", "m", DISTANCE_TOL, above=False)
+TURNING = Limit("turning rate", "rad/s", MAX_TURNING, above=False)
+
+
+def lap_margins(margins: Margins, figures: dict, clearance: float | None, run: str) -> None:
+    """The figures of one lap run (judge_laps's, and the run's TRUE clearance) against their limits."""
+    margins.add(CLEARANCE, clearance, run)
+    margins.add(LAPS_DONE, figures["laps"], run)
+    median = figures["median_distance"]
+    margins.add(OFF_D_FW, None if median is None else abs(median - figures["d_fw"]), run)
+    margins.add(TURNING, figures["turning_rate"], run)
+
+
 def _laps(
     ctx: Context, check_id: str, direction: str, theta0: float, d_fw: float | None, label: str
 ) -> tuple[bool, str, dict, scenarios.Run]:
@@ -448,10 +480,8 @@ def _laps(
     session, note = earlier.scenario_session(ctx)  # the course's versions of the earlier weeks' parts
     r = scenarios.run(ctx, label, settings, SECONDS, world=world, start=(0.0, 0.0, theta0), session=session)
     scenarios.keep(ctx, check_id, r)
-    s = r.trace.steps
-    ok, text, figures = judge_laps(
-        s["x"], s["y"], s["t"], r.collision, direction, d_fw, obstacle(world), ctx.config.dt
-    )
+    dt = ctx.config.dt
+    ok, text, figures = judge_laps(r.trace.steps, r.collision, direction, d_fw, obstacle(world), dt)
     details = {**r.metrics, **figures, "problem": r.problem, "traces": scenarios.trace_keys([r])}
     if r.problem:
         return False, r.problem, details, r
@@ -470,7 +500,10 @@ def _visible(direction: str, theta0: float):
         label = f"following the wall on the {direction}, starting at heading {fmt(theta0)}, your d_fw"
         ok, text, details, r = _laps(ctx, check_id, direction, theta0, None, label)
         label += f" = {fmt(details['d_fw'])} m" if "d_fw" in details else ""
-        return Outcome(float(ok), f"{label}: {text}", details, status=scenarios.status_of([r]))
+        margins = Margins()
+        _margins(margins, details, r)
+        return Outcome(float(ok), f"{label}: {text}", {**details, "margins": margins.to_json()},
+                       status=scenarios.status_of([r]))
 
     run.__name__ = direction
     return run
@@ -485,7 +518,7 @@ def hidden_laps(ctx: Context) -> Outcome:
             0.0, "the instructor's hidden set is not here (it runs at official grading)", status="error"
         )
     picks = random.Random(f"{ctx.seed}:week6-variants").sample(data["variants"], 3)
-    good, lines, runs, done = 0, [], [], []
+    good, lines, runs, done, margins = 0, [], [], [], Margins()
     for v in picks:
         label = f"on the {v['direction']}, start heading {fmt(v['theta0'])}, d_fw = {fmt(v['d_fw'])} m"
         ok, text, details, r = _laps(ctx, "week6.laps.hidden", v["direction"], v["theta0"], v["d_fw"], label)
@@ -493,12 +526,18 @@ def hidden_laps(ctx: Context) -> Outcome:
         lines.append(f"{label}: {text}")
         runs.append({"variant": v, **details})
         done.append(r)
+        _margins(margins, details, r)
     return Outcome(
         good / 3,
         "; ".join(lines),
-        {"runs": runs, "traces": scenarios.trace_keys(done)},
+        {"runs": runs, "traces": scenarios.trace_keys(done), "margins": margins.to_json()},
         status=scenarios.status_of(done),
     )
+
+
+def _margins(margins: Margins, details: dict, r: scenarios.Run) -> None:
+    if not r.problem and "laps" in details:  # a broken run's verdict is the error, not a figure
+        lap_margins(margins, details, scenarios.clearance_of(r), r.label)
 
 
 CHECKS = [

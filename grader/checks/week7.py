@@ -22,6 +22,7 @@ from grader import reference as ref
 from grader.checks import Check, Context, Mismatch, Outcome
 from grader.checks.answers import fmt, number, vector
 from grader.domains import Floats, Lists, SampledFrom
+from grader.margins import Margins
 from grader.properties import run_property
 from simiam.world import World, load_world
 
@@ -314,13 +315,14 @@ def turned(world: World, goal: tuple[float, float], turn: int, of: int) -> tuple
 
 
 def navigate(ctx: Context, check_id: str, world: World, goal: tuple[float, float], label: str,
-             seconds: float) -> tuple[bool, str, dict, scenarios.Run]:
+             seconds: float, margins: Margins) -> tuple[bool, str, dict, scenarios.Run]:
     """One run to `goal`: reached when the TRUE position comes within 0.05 m of it, with no collision."""
     settings = ctx.config.settings.with_changes(goal=tuple(goal)).as_dict()
     session, note = earlier.scenario_session(ctx)  # earlier weeks' parts: the course's versions
     r = scenarios.run(ctx, label, settings, seconds, world=world, goal=goal, goal_radius=D_GOAL,
                       session=session)
     scenarios.keep(ctx, check_id, r)
+    scenarios.add_margins(margins, r, seconds)
     details = {**r.metrics, "problem": r.problem, "traces": scenarios.trace_keys([r])}
     where = f"goal ({goal[0]:.2f}, {goal[1]:.2f})" + (f" ({note})" if note else "")
     if r.problem:
@@ -335,10 +337,12 @@ def navigate(ctx: Context, check_id: str, world: World, goal: tuple[float, float
 
 def release_goal(ctx: Context) -> Outcome:
     goal = ctx.config.settings.goal or (1.1, 1.1)
+    margins = Margins()
     ok, text, details, r = navigate(ctx, "week7.navigate.release_goal", load_world(ctx.config.world), goal,
-                                    "the trap world", ctx.config.seconds)
+                                    "the trap world", ctx.config.seconds, margins)
     hint = "" if ok or r.problem else f". {NAVIGATE_HINT}"
-    return Outcome(float(ok), f"from inside the trap: {text}{hint}", details, status=scenarios.status_of([r]))
+    return Outcome(float(ok), f"from inside the trap: {text}{hint}",
+                   {**details, "margins": margins.to_json()}, status=scenarios.status_of([r]))
 
 
 def other_goals(ctx: Context) -> Outcome:
@@ -349,18 +353,19 @@ def other_goals(ctx: Context) -> Outcome:
         return Outcome(0.0, "the instructor's hidden set is not here (it runs at official grading)",
                        status="error")
     picks = random.Random(f"{ctx.seed}:week7-variants").sample(data["variants"], 3)
-    good, lines, runs, done = 0, [], [], []
+    good, lines, runs, done, margins = 0, [], [], [], Margins()
     for v in picks:
         world, goal = turned(load_world(ctx.config.world), tuple(v["goal"]), v["turn"], v["of"])
         ok, text, details, r = navigate(ctx, "week7.navigate.other_goals", world, goal, world.name,
-                                        HIDDEN_SECONDS)
+                                        HIDDEN_SECONDS, margins)
         good += ok
         lines.append(f"{world.name}, {text}")
         runs.append({"variant": v, **details})
         done.append(r)
     missed = good < 3 and not any(r.problem for r in done)
     return Outcome(good / 3, "; ".join(lines) + (f". {NAVIGATE_HINT}" if missed else ""),
-                   {"runs": runs, "traces": scenarios.trace_keys(done)}, status=scenarios.status_of(done))
+                   {"runs": runs, "traces": scenarios.trace_keys(done), "margins": margins.to_json()},
+                   status=scenarios.status_of(done))
 
 
 CHECKS = [

@@ -9,7 +9,10 @@ where they say so):
 - every kept wrong version (COURSE/tests/data/wrong/*.patch, a `# aims:` line naming the checks it aims
   at, `none` for a correct alternative) loses exactly those checks and no other.
 
-It prints one line per expectation and exits 1 when any failed. See docs/ci-selfcheck.yml.
+It prints one line per expectation and exits 1 when any failed. See docs/ci-selfcheck.yml. Under the
+solutions' line it prints the margin of each scenario check (grader.margins): how far the reference's
+figures are from their limits; under a wrong version's line, how far its figures are on the failing side of
+the scenario checks it aims at. A verdict with little to spare is one a last bit could flip.
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from grader.grading import DEFAULT_SEED, ROOT, grade_submission
+from grader.margins import passes, words
 from grader.platforms.wrong_versions import MistakeError, apply_mistake
 
 
@@ -34,6 +38,7 @@ class Expectation:
     folder: Path
     hidden: bool
     verdict: Callable[[dict], str | None]
+    margins: Callable[[dict], list[str]] | None = None  # the margin lines printed under the verdict
 
 
 def full_marks(result: dict) -> str | None:
@@ -66,6 +71,34 @@ def loses_exactly(aims: frozenset[str]) -> Callable[[dict], str | None]:
             parts.append("also loses " + ", ".join(sorted(lost - aims)))
         return "; ".join(parts)
     return verdict
+
+
+def reference_margins(result: dict) -> list[str]:
+    """One line per scenario check: each figure it judged, the run nearest its limit and what it has to
+    spare (a check judging no figure, such as 'the simulator runs', says so)."""
+    lines = []
+    for c in result["checks"]:
+        if c["kind"] != "scenario":
+            continue
+        entries = c.get("details", {}).get("margins")
+        said = "; ".join(words(e) for e in entries) if entries else "no figure judged"
+        lines.append(f"{c['id']}: {said}")
+    return lines
+
+
+def caught_margins(aims: frozenset[str]) -> Callable[[dict], list[str]]:
+    """The figures on the failing side, per scenario check in `aims` (a run the code broke has none: the
+    error is the verdict)."""
+    def lines(result: dict) -> list[str]:
+        out = []
+        for c in result["checks"]:
+            if c["kind"] != "scenario" or c["id"] not in aims:
+                continue
+            failing = [e for e in c.get("details", {}).get("margins") or [] if not passes(e)]
+            said = "; ".join(words(e) for e in failing) if failing else f"no figure: {c['message'][:120]}"
+            out.append(f"{c['id']}: {said}")
+        return out
+    return lines
 
 
 def has_coded_parts(week: int) -> bool:
@@ -107,7 +140,7 @@ def _expectations(course: Path, weeks: list[int], wrong: Path | None, tmp: Path,
     exps: list[Expectation | None] = []
     for week in weeks:
         exps.append(Expectation(f"solutions week{week} (hidden checks included)", week,
-                                course / "solutions" / f"week{week}", True, full_marks))
+                                course / "solutions" / f"week{week}", True, full_marks, reference_margins))
         folder = tmp / "stubs" / f"week{week}"
         folder.mkdir(parents=True)
         for rel, text in stubs.items():
@@ -135,7 +168,7 @@ def _expectations(course: Path, weeks: list[int], wrong: Path | None, tmp: Path,
             continue
         what = ", ".join(sorted(mistake.aims)) or "nothing (a correct alternative)"
         exps.append(Expectation(f"wrong {patch.stem} (loses {what})", mistake.week, folder, False,
-                                loses_exactly(mistake.aims)))
+                                loses_exactly(mistake.aims), caught_margins(mistake.aims)))
     return exps
 
 
@@ -145,4 +178,7 @@ def check_one(exp: Expectation, seed: int, out=print) -> int:
     problem = exp.verdict(result)
     out(f"{'ok  ' if problem is None else 'FAIL'}  {exp.label}"
         f"{'' if problem is None else ': ' + problem}  [{result['score']:g}/{result['max_score']:g}]")
+    if exp.margins is not None and result["status"] == "graded":
+        for line in exp.margins(result):
+            out(f"        margin {line}")
     return 0 if problem is None else 1

@@ -57,7 +57,7 @@ def test_min_clearance_of_a_run_is_shapelys() -> None:
                          "theta": [x * 2 for x in xs]})
     ours = min_clearance(trace, world, spec)
     theirs_all = MultiPolygon([Polygon(p) for p in world.obstacles])
-    rows = list(range(0, 120, 3)) + [119]
+    rows = range(120)  # every step: a margin read from every third overstated this run's by 0.04 mm
     theirs = min(Polygon(_plate_at(trace.steps["x"][k], trace.steps["y"][k], trace.steps["theta"][k]))
                  .distance(theirs_all) for k in rows)
     assert ours == pytest.approx(theirs, rel=1e-12, abs=1e-15)

@@ -1,6 +1,7 @@
 """The instructor's hidden week-5 variants are fair: the reference solution completes every one as the
 grader runs it (the world seen from the start pose, the grader's settings): the goal reached on the TRUE
-pose, no collision, and (switching) well under the switch-rate limit."""
+pose, no collision, never closer to an obstacle than twice the limit the checks allow (MIN_CLEARANCE), and
+(switching) well under the switch-rate limit."""
 
 from __future__ import annotations
 
@@ -9,12 +10,14 @@ from pathlib import Path
 
 import pytest
 
-from grader.checks.week5 import D_STOP, MAX_RATE, setup
+from grader import scenarios
+from grader.checks.week5 import D_STOP, MAX_RATE, MIN_CLEARANCE, setup
 from grader.hidden import load_hidden
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
 from simiam.course.weeks import get_week
 from simiam.simulator import Simulator
+from simiam.trace import EndReason
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -34,16 +37,17 @@ def complete(folder: Path, variant: dict) -> str | None:
     sub = load_submission(folder, config)
     assert sub.ok, sub.errors
     sim = Simulator(world, LocalBrain(sub, config, settings), config.spec, dt=config.dt)
-    names = [first]
-    for _ in range(int(round(config.seconds / config.dt))):
-        rec = sim.step()
-        names.append(rec.command["state"])
-        if rec.collided:
-            return f"{label}: collided at t = {rec.t:.2f} s"
-        if math.dist(rec.pose[:2], goal) < D_STOP:
-            rate = sum(a != b for a, b in zip(names, names[1:], strict=False)) / rec.t
-            return f"{label}: {rate:.2f} switches per second" if rate > MAX_RATE / 2 else None
-    return f"{label}: not reached in {config.seconds:g} s"
+    trace = sim.run(config.seconds, until=lambda rec: math.dist(rec.pose[:2], goal) < D_STOP)
+    if trace.collision is not None:
+        return f"{label}: collided at t = {trace.collision['t']:.2f} s"
+    if trace.ending is None or trace.ending.reason is not EndReason.UNTIL:
+        return f"{label}: not reached in {config.seconds:g} s"
+    gap = scenarios.min_clearance(trace, world, config.spec)
+    if gap is not None and gap < 2 * MIN_CLEARANCE:
+        return f"{label}: within {gap:.4f} m of an obstacle"
+    names = [first, *trace.steps["state"][1:]]
+    rate = sum(a != b for a, b in zip(names, names[1:], strict=False)) / trace.ending.t
+    return f"{label}: {rate:.2f} switches per second" if rate > MAX_RATE / 2 else None
 
 
 @pytest.mark.slow

@@ -1,12 +1,14 @@
 """The instructor's hidden week-6 variants are fair: the reference solution passes the grader's own lap
-judgement on every one (two laps, no collision, near d_fw), and the set covers both sides."""
+judgement on every one (two laps, no collision, near d_fw, driving along the wall) with the maker's margins
+(two laps by 75 s, within 0.03 m of d_fw, never closer than 0.01 m to the wall), and the set covers both
+sides."""
 
 from __future__ import annotations
 
 import pytest
 
 from grader.hidden import load_hidden
-from instructor_tools.hidden_week6 import reference_run
+from instructor_tools.hidden_week6 import reference_run, with_margin
 
 
 def test_hidden_set_is_present_and_covers_both_sides() -> None:
@@ -21,9 +23,9 @@ def test_hidden_set_is_present_and_covers_both_sides() -> None:
 def test_reference_solution_passes_every_hidden_variant() -> None:
     failed = []
     for v in load_hidden(6)["variants"]:
-        ok, why, _ = reference_run(v["direction"], v["theta0"], v["d_fw"])
-        if not ok:
-            failed.append((v, why))
+        ok, why, figures = reference_run(v["direction"], v["theta0"], v["d_fw"])
+        if not ok or not with_margin(figures, v["d_fw"]):
+            failed.append((v, why, figures))
     assert failed == []
 
 

@@ -28,6 +28,15 @@ def test_the_course_passes_its_selfcheck_for_week3():
     assert any(ln.startswith("ok    stubs week3 (zero on every coded part)") for ln in lines)
     week3 = [p for p in (DATA / "wrong").glob("*.patch") if read_mistake(p).week == 3]
     assert len(week3) >= 7 and sum(ln.startswith("ok    wrong ") for ln in lines) == len(week3)
+    # the margins: every figure of the reference's scenario checks with what it has to spare, and the figures
+    # of a caught wrong version past their limits
+    assert any(ln.startswith("        margin week3.go_to_goal.reach_goals: clearance ") and "to spare" in ln
+               for ln in lines)
+    assert any(ln.startswith("        margin week3.pid.settle_time: settle time ") for ln in lines)
+    weak = lines.index(next(ln for ln in lines if ln.startswith("ok    wrong week3_weak_gains ")))
+    assert [ln.split(":")[0] for ln in lines[weak + 1:weak + 3]] == [
+        "        margin week3.pid.settle_time", "        margin week3.pid.overshoot"]
+    assert all("past it" in ln or "ended without it" in ln for ln in lines[weak + 1:weak + 3])
 
 
 @pytest.mark.slow
