@@ -15,7 +15,6 @@ geometry), so the sensor check does not depend on that week either.
 from __future__ import annotations
 
 import math
-import random
 from typing import Any
 
 from grader import earlier, scenarios
@@ -478,13 +477,15 @@ def _visible(direction: str, theta0: float):
 
 def hidden_laps(ctx: Context) -> Outcome:
     from grader.hidden import load_hidden
+    from grader.hidden.draw import draw, heading_quarter
 
     data = load_hidden(6)
     if not data:
         return Outcome(
             0.0, "the instructor's hidden set is not here (it runs at official grading)", status="error"
         )
-    picks = random.Random(f"{ctx.seed}:week6-variants").sample(data["variants"], 3)
+    picks = draw(data["variants"], 3, f"{ctx.seed}:week6-variants",
+                 lambda v: (v["direction"], heading_quarter(v["theta0"])))
     good, lines, runs, done = 0, [], [], []
     for v in picks:
         label = f"on the {v['direction']}, start heading {fmt(v['theta0'])}, d_fw = {fmt(v['d_fw'])} m"

@@ -15,7 +15,6 @@ weeks' parts (grader.earlier), with the student's week-7 blocks in them.
 from __future__ import annotations
 
 import math
-import random
 
 from grader import earlier, scenarios
 from grader import reference as ref
@@ -343,12 +342,15 @@ def release_goal(ctx: Context) -> Outcome:
 
 def other_goals(ctx: Context) -> Outcome:
     from grader.hidden import load_hidden
+    from grader.hidden.draw import draw, turn_quarter
 
     data = load_hidden(7)
     if not data:
         return Outcome(0.0, "the instructor's hidden set is not here (it runs at official grading)",
                        status="error")
-    picks = random.Random(f"{ctx.seed}:week7-variants").sample(data["variants"], 3)
+    # three different start headings (issue 21: seed 2014 once drew three variants turned 0 degrees)
+    picks = draw(data["variants"], 3, f"{ctx.seed}:week7-variants",
+                 lambda v: (turn_quarter(v["turn"], v["of"]),))
     good, lines, runs, done = 0, [], [], []
     for v in picks:
         world, goal = turned(load_world(ctx.config.world), tuple(v["goal"]), v["turn"], v["of"])
