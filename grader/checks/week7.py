@@ -29,6 +29,9 @@ ALL = ("differential_drive.py", "quickbot.py", "go_to_angle.py", "go_to_goal.py"
        "ao_and_gtg.py", "follow_wall.py", "sliding_mode.py", "qb_supervisor.py")
 D_GOAL = 0.05  # the course's test 7.1: the TRUE position within 0.05 m of the goal
 EPSILON = 0.1  # the manual's slack in progress_made
+# Closer than d_prog by less than this counts as progress only for a rule with no slack to speak of: less
+# than the estimate moves on one encoder tick (2*pi*R/16 = 12.8 mm of a wheel, half that of the robot).
+STALL_GAP = 0.005
 HIDDEN_SECONDS = 60.0
 NAVIGATE_HINT = (
     "Hint: replay the run in the report and follow the state timeline: the robot must follow the wall when "
@@ -148,6 +151,27 @@ _PROGRESS = {"x_g": _coord, "y_g": _coord, "bearing": Floats(-math.pi, math.pi),
              "distance": Floats(0.0, 2.0), "d_prog": Floats(0.05, 2.5)}
 
 
+def _stalled_step(ctx: Context, goal: list, distance: float, d_prog: float) -> None:
+    """progress_made counted `distance`, a few millimetres closer than d_prog, as progress: then a step
+    in which the estimate did not move (no encoder tick: it stays at d_prog) must count too. A strict `<`
+    without slack says no there, and the automaton turns to the wall whenever the wheels' encoders miss a
+    tick (hidden goals then end in a collision). The manual's slack (`< d_prog - 0.1`) never gets here.
+
+    The estimate is put on the goal's x axis: its distance to the goal, |x_g - x|, is then the same last
+    bit in every way of computing a length (norm, np.linalg.norm, math.hypot, sqrt of squares)."""
+    estimate = [goal[0] + distance, goal[1], 0.0]
+    at = abs(goal[0] - estimate[0])
+    answer = ctx.probe("week7_progress", goal=goal, estimate=estimate, d_prog=at)
+    made = answer.get("progress") if isinstance(answer, dict) else None
+    if made is False:
+        raise Mismatch(f"with the goal {_v(goal)}, progress_made returned True with the estimate "
+                       f"{fmt(distance)} m from it and d_prog = {fmt(d_prog)} m, but False with d_prog = "
+                       f"{fmt(at)} m, the estimate exactly that far (where a step with no encoder tick "
+                       "leaves it after set_progress_point): with a strict < and no slack the automaton "
+                       "turns to the wall whenever the wheels do not tick. Use <= (at least as close as "
+                       "ever), or the manual's slack, < d_prog - 0.1")
+
+
 def progress_made(ctx: Context) -> Outcome:
     def case(ctx: Context, **values) -> None:
         goal, estimate, distance, d_prog = _distance_case(values)
@@ -166,11 +190,14 @@ def progress_made(ctx: Context) -> Outcome:
         if isinstance(answer.get("d_prog"), float) and answer["d_prog"] != d_prog:
             raise Mismatch(f"{where} progress_made changed d_prog to {fmt(answer['d_prog'])}: only "
                            "set_progress_point sets it")
+        if made and d_prog - STALL_GAP <= distance < d_prog:
+            _stalled_step(ctx, goal, distance, d_prog)
 
     examples = [
         {"x_g": 1.1, "y_g": 1.1, "bearing": 3.9, "distance": 0.5, "d_prog": 1.0},
         {"x_g": 1.1, "y_g": 1.1, "bearing": 3.9, "distance": 1.2, "d_prog": 1.0},
         {"x_g": -1.0, "y_g": 1.0, "bearing": 0.0, "distance": 0.0, "d_prog": 0.5},
+        {"x_g": 1.0, "y_g": 1.0, "bearing": 0.0, "distance": 0.4975, "d_prog": 0.5},   # a step's move closer
     ]
     return run_property(ctx, "week7.progress.made", _PROGRESS, case, examples=examples, max_examples=15,
                         passed="progress_made compares the distance to the goal with d_prog")

@@ -46,6 +46,7 @@ MESSAGES = {
     "week6_direction_misspelt": {"week6.supervisor.settings": "your fw_direction was 'rigth'"},
     "week6_ties_prefer_last": {"week6.follow_wall.sensors": "(on a tie the first in that order)"},
     "week6_pp_sign_flipped": {"week6.follow_wall.distance": "zero at d_fw"},
+    "week7_progress_strict": {"week7.progress.made": "a step with no encoder tick"},
 }
 
 
