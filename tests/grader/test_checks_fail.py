@@ -42,6 +42,8 @@ MESSAGES = {
     "week5_blend_jumps": {"week5.blend.continuous": "changing only the length of u_ao"},
     "week5_switching_unsafe_last": {"week5.switching.states": "expected 'avoid_obstacles'"},
     "week5_switching_chatters": {"week5.switching.switch_rate": "chatters between controllers"},
+    "week5_switching_independent_ifs": {"week5.switching.states": "switched 2 times in that one step"},
+    "week5_switching_chatters_unreported": {"week5.switching.switch_rate": "27.5 switches per second"},
     "week6_d_fw_too_close": {"week6.laps.left": "your d_fw = 0.1 m: touched an obstacle at t = 2.75 s"},
     "week6_direction_misspelt": {"week6.supervisor.settings": "your fw_direction was 'rigth'"},
     "week6_ties_prefer_last": {"week6.follow_wall.sensors": "(on a tie the first in that order)"},
