@@ -345,19 +345,29 @@ def _distance_part(a: _Answer) -> None:
 
 
 def _u_fw(a: _Answer) -> None:
-    """u_fw - u_fw_pp is d_fw times u_fw_tp."""
-    tp, pp, u = a["u_fw_tp"], a["u_fw_pp"], a["u_fw"]
+    """u_fw is d_fw times u_fw_tp plus the distance part: the one it must be (from the student's u_fw_p),
+    or the student's own u_fw_pp when that one is wrong (its check already says so). Judged on what u_fw
+    must be, not only on the student's u_fw_pp: the course's sp14 code keeps the unit vector of u_fw_p
+    under that name and writes u_fw = d_fw*u_fw_tp + (u_fw_p - d_fw*u_fw_pp), which is right (issue 21)."""
+    tp, p, pp, u = a["u_fw_tp"], a["u_fw_p"], a["u_fw_pp"], a["u_fw"]
     if _length(tp) <= 1e-9:
         raise Mismatch(
             f"{a.where} your u_fw_tp was {_v(tp)}: u_fw needs the direction along the wall (the "
             "u_fw_tp check says more)"
         )
-    rest = (u[0] - pp[0] - a.d_fw * tp[0], u[1] - pp[1] - a.d_fw * tp[1])
-    if _length(rest) > TOL:
+    n = _length(p)
+    parts = [pp] + ([(p[0] - a.d_fw * p[0] / n, p[1] - a.d_fw * p[1] / n)] if n > 1e-9 else [])
+    if all(_length((u[0] - part[0] - a.d_fw * tp[0], u[1] - part[1] - a.d_fw * tp[1])) > TOL
+           for part in parts):
         raise Mismatch(
-            f"{a.where} your u_fw was {_v(u)} with u_fw_tp = {_v(tp)} and u_fw_pp = {_v(pp)}: "
-            "expected d_fw * u_fw_tp + u_fw_pp"
+            f"{a.where} your u_fw was {_v(u)} with u_fw_tp = {_v(tp)} and u_fw_p = {_v(p)}: expected "
+            f"d_fw * u_fw_tp + u_fw_pp = {_v(_plus(a.d_fw, tp, parts[-1]))}, the distance part u_fw_pp "
+            "being u_fw_p - d_fw * u_fw_p / |u_fw_p|"
         )
+
+
+def _plus(k: float, v: tuple[float, float], w: tuple[float, float]) -> tuple[float, float]:
+    return (k * v[0] + w[0], k * v[1] + w[1])
 
 
 def settings(ctx: Context) -> Outcome:
