@@ -280,6 +280,12 @@ _EVENTS = ("at_goal", "at_obstacle", "unsafe", "obstacle_cleared", "progress_mad
 def _step(ctx: Context, situation: str, drawn: list[bool]) -> tuple[dict, dict]:
     state, direction, fixed, _, _ = SITUATIONS[situation]
     events = {name: fixed.get(name, drawn[i]) for i, name in enumerate(_EVENTS)}
+    # only what a robot can see at once (issue 21): unsafe is under d_unsafe < d_at_obs, so at_obstacle
+    # too; obstacle_cleared is all five over d_at_obs, so exactly not at_obstacle. An automaton that asks
+    # unsafe only inside its at_obstacle branch is the same automaton on the robot.
+    if events["unsafe"]:
+        events["at_obstacle"] = True
+    events["obstacle_cleared"] = not events["at_obstacle"]
     distances = _NEAR_RIGHT if "right" in situation else _NEAR_LEFT
     answer = ctx.probe("week7_step", state=state, fw_direction=direction, events=events, distances=distances)
     if not isinstance(answer, dict):
