@@ -365,11 +365,25 @@ def navigate(ctx: Context, check_id: str, world: World, goal: tuple[float, float
     return True, f"{where} reached in {r.t_goal:.1f} s without a collision", details, r
 
 
+def navigate_hint(runs: list[scenarios.Run]) -> str:
+    """The hint for runs that missed their goal. When d_prog never moved in a run, the automaton never
+    calls set_progress_point: progress_made then always holds and no threshold helps, so the general
+    hint's "tune d_at_obs and d_unsafe" would send the student the wrong way (issue 21)."""
+    for r in runs:
+        kept = [d for d in r.trace.steps.get("d_prog", []) if type(d) in (int, float)]
+        if len(kept) > 1 and all(d == kept[0] for d in kept):
+            return (f"Hint: d_prog stayed at {fmt(kept[0])} m the whole run: your automaton never calls "
+                    "self.set_progress_point() when it makes progress, so progress_made always holds and the "
+                    "robot never turns to the wall (no tuning of d_at_obs or d_unsafe helps); the replay "
+                    "plots d_prog")
+    return NAVIGATE_HINT
+
+
 def release_goal(ctx: Context) -> Outcome:
     goal = ctx.config.settings.goal or (1.1, 1.1)
     ok, text, details, r = navigate(ctx, "week7.navigate.release_goal", load_world(ctx.config.world), goal,
                                     "the trap world", ctx.config.seconds)
-    hint = "" if ok or r.problem else f". {NAVIGATE_HINT}"
+    hint = "" if ok or r.problem else f". {navigate_hint([r])}"
     return Outcome(float(ok), f"from inside the trap: {text}{hint}", details, status=scenarios.status_of([r]))
 
 
@@ -394,7 +408,7 @@ def other_goals(ctx: Context) -> Outcome:
         runs.append({"variant": v, **details})
         done.append(r)
     missed = good < 3 and not any(r.problem for r in done)
-    return Outcome(good / 3, "; ".join(lines) + (f". {NAVIGATE_HINT}" if missed else ""),
+    return Outcome(good / 3, "; ".join(lines) + (f". {navigate_hint(done)}" if missed else ""),
                    {"runs": runs, "traces": scenarios.trace_keys(done)}, status=scenarios.status_of(done))
 
 
