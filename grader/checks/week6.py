@@ -305,6 +305,15 @@ def _perpendicular(a: _Answer) -> None:
             f"and p_2 {_v(p_2)} (its part along the wall is {fmt(_dot(p, unit))} m): expected "
             "(u_a - u_p) - ((u_a - u_p) . u_fw_tp) u_fw_tp, with u_a = p_1 and u_p = (x, y)"
         )
+    to_wall = (p_1[0] - a.robot[0], p_1[1] - a.robot[1])
+    if abs(_cross((end[0] - p_1[0], end[1] - p_1[1]), unit)) > TOL and _dot(p, to_wall) < 0 \
+            and abs(_length(p) - distance) <= TOL:
+        # the right length the wrong way (u_p - u_a): say so, not only that it misses the wall (issue 21)
+        raise Mismatch(
+            f"{a.where} your u_fw_p was {_v(p)}: the right length ({fmt(distance)} m) but pointing away "
+            "from the wall, from the wall to the robot: expected (u_a - u_p) - ((u_a - u_p) . u_fw_tp) "
+            "u_fw_tp, from the robot (u_p) to the wall (u_a = p_1)"
+        )
     if abs(_cross((end[0] - p_1[0], end[1] - p_1[1]), unit)) > TOL:
         raise Mismatch(
             f"{a.where} your u_fw_p was {_v(p)} (length {fmt(_length(p))}): from the robot it does "

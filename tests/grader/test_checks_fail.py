@@ -48,6 +48,7 @@ MESSAGES = {
     "week6_direction_misspelt": {"week6.supervisor.settings": "your fw_direction was 'rigth'"},
     "week6_ties_prefer_last": {"week6.follow_wall.sensors": "(on a tie the first in that order)"},
     "week6_pp_sign_flipped": {"week6.follow_wall.distance": "zero at d_fw"},
+    "week6_perpendicular_reversed": {"week6.follow_wall.perpendicular": "pointing away from the wall"},
     "week6_pp_unit_vector": {"week6.follow_wall.distance": "expected u_fw_p - d_fw * u_fw_p / |u_fw_p|"},
     "week7_progress_strict": {"week7.progress.made": "a step with no encoder tick"},
     "week7_progress_point_never_set": {"week7.navigate.release_goal": "never calls self.set_progress_point"},
