@@ -85,9 +85,7 @@ def sigma_solves(ctx: Context) -> Outcome:
         if max(abs(got[0] - u_fw[0]), abs(got[1] - u_fw[1])) > 1e-6 * scale:
             raise Mismatch(
                 f"{where}: your sigma ({fmt(sigma[0])}, {fmt(sigma[1])}) gives sigma_1 * u_gtg + sigma_2 * "
-                f"u_ao = {_v(got)}, not u_fw: solve [u_gtg u_ao] sigma = u_fw with u_gtg and u_ao as the "
-                "COLUMNS of the matrix (np.column_stack, or np.linalg.solve(A, u_fw) with A = [[u_gtg_x, "
-                "u_ao_x], [u_gtg_y, u_ao_y]])"
+                f"u_ao = {_v(got)}, not u_fw: {_sigma_slip(u_gtg, u_ao, u_fw, sigma)}"
             )
         want = sigma[0] > 0 and sigma[1] > 0
         if sliding != want:
@@ -120,6 +118,30 @@ def sigma_solves(ctx: Context) -> Outcome:
         passed="sigma solves [u_gtg u_ao] sigma = u_fw, sliding is sigma_1 > 0 and sigma_2 > 0, and the "
                "singular systems (u_gtg = 0, u_ao parallel to u_gtg) do not stop the run",
     )
+
+
+def _sigma_slip(u_gtg: list, u_ao: list, u_fw: list, sigma: tuple) -> str:
+    """What a wrong sigma most likely got wrong: the matrix built by rows, a sign in Cramer's rule, or
+    neither (issue 21: a sign slip was told to use u_gtg and u_ao as the columns)."""
+    det = _det(u_gtg, u_ao)
+    right = ((u_fw[0] * u_ao[1] - u_ao[0] * u_fw[1]) / det, (u_gtg[0] * u_fw[1] - u_fw[0] * u_gtg[1]) / det)
+    rows = ((u_fw[0] * u_ao[1] - u_gtg[1] * u_fw[1]) / det, (u_gtg[0] * u_fw[1] - u_ao[0] * u_fw[0]) / det)
+
+    def near(a: float, b: float) -> bool:
+        return abs(a - b) <= 1e-6 * max(1.0, abs(b))
+
+    columns = ("with u_gtg and u_ao as the COLUMNS of the matrix (np.column_stack, or np.linalg.solve(A, "
+               "u_fw) with A = [[u_gtg_x, u_ao_x], [u_gtg_y, u_ao_y]])")
+    if all(near(g, w) for g, w in zip(sigma, rows, strict=True)):
+        return (f"your sigma solves the system with u_gtg and u_ao as the ROWS; solve [u_gtg u_ao] sigma = "
+                f"u_fw {columns}")
+    flipped = [i + 1 for i in range(2) if near(sigma[i], -right[i]) and not near(right[i], 0.0)]
+    if flipped and all(near(abs(g), abs(w)) for g, w in zip(sigma, right, strict=True)):
+        which = " and ".join(f"sigma_{i}" for i in flipped)
+        return (f"{which} has the wrong sign, the right size: check the signs of Cramer's rule, sigma_1 = "
+                "(u_fw_x u_ao_y - u_ao_x u_fw_y) / det, sigma_2 = (u_gtg_x u_fw_y - u_fw_x u_gtg_y) / det, "
+                "det = u_gtg_x u_ao_y - u_ao_x u_gtg_y (or np.linalg.solve)")
+    return f"solve [u_gtg u_ao] sigma = u_fw {columns}"
 
 
 def _det(u_gtg: list, u_ao: list) -> float:

@@ -50,6 +50,8 @@ MESSAGES = {
     "week6_pp_sign_flipped": {"week6.follow_wall.distance": "zero at d_fw"},
     "week6_perpendicular_reversed": {"week6.follow_wall.perpendicular": "pointing away from the wall"},
     "week6_pp_unit_vector": {"week6.follow_wall.distance": "expected u_fw_p - d_fw * u_fw_p / |u_fw_p|"},
+    "week7_sigma_cramer_sign": {"week7.sliding.sigma": "sigma_2 has the wrong sign"},
+    "week7_sigma_transposed": {"week7.sliding.sigma": "as the ROWS; solve"},
     "week7_progress_strict": {"week7.progress.made": "a step with no encoder tick"},
     "week7_progress_point_never_set": {"week7.navigate.release_goal": "never calls self.set_progress_point"},
     "week7_stub_thresholds": {"week7.navigate.release_goal": "tune d_at_obs and d_unsafe"},
