@@ -77,14 +77,16 @@ def _choice_problem(distances: list[float], direction: str, got: list[int]) -> s
     if i_1 == i_2 or i_1 not in side or i_2 not in side:
         return f"two different sensors of {', '.join(map(str, side))} ({direction} side)"
     (left_out,) = [k for k in side if k not in got]
-    for k in got:
+    for k in sorted(got, key=lambda k: (-distances[k], -side.index(k))):   # the one to drop first
         if distances[left_out] < distances[k] or (
             distances[left_out] == distances[k] and side.index(left_out) < side.index(k)
         ):
+            # say which one was left out: "sensor 3 ..., sensor 2 ..." read as if {3, 2} were expected
+            closer = "as close as" if distances[left_out] == distances[k] else "closer than"
             return (
-                f"the two closest of {', '.join(map(str, side))}: sensor {left_out} measures "
-                f"{fmt(distances[left_out])} m, sensor {k} {fmt(distances[k])} m (on a tie the first in that "
-                "order)"
+                f"the two closest of {', '.join(map(str, side))} (on a tie the first in that order): you "
+                f"left out sensor {left_out}, which measures {fmt(distances[left_out])} m, {closer} sensor "
+                f"{k} ({fmt(distances[k])} m) that you took"
             )
     if (i_1 < i_2) != (direction != "right"):
         return (

@@ -46,7 +46,7 @@ MESSAGES = {
     "week5_switching_chatters_unreported": {"week5.switching.switch_rate": "27.5 switches per second"},
     "week6_d_fw_too_close": {"week6.laps.left": "your d_fw = 0.1 m: touched an obstacle at t = 2.75 s"},
     "week6_direction_misspelt": {"week6.supervisor.settings": "your fw_direction was 'rigth'"},
-    "week6_ties_prefer_last": {"week6.follow_wall.sensors": "(on a tie the first in that order)"},
+    "week6_ties_prefer_last": {"week6.follow_wall.sensors": "order): you left out sensor 4, which"},
     "week6_pp_sign_flipped": {"week6.follow_wall.distance": "zero at d_fw"},
     "week6_perpendicular_reversed": {"week6.follow_wall.perpendicular": "pointing away from the wall"},
     "week6_pp_unit_vector": {"week6.follow_wall.distance": "expected u_fw_p - d_fw * u_fw_p / |u_fw_p|"},
