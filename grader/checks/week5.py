@@ -333,7 +333,7 @@ def _reach(mode: str, check_id: str):
             notes.add(note)
         message = "; ".join(lines) + "".join(f". Note: {n}" for n in sorted(notes) if n)
         if good < len(done) and not any(r.problem for r in done):
-            message += f". {_RUN_HINT[mode]}"
+            message += f". {_run_hint(mode, done)}"
         return Outcome(good / len(done), message, {"runs": details, "traces": scenarios.trace_keys(done)},
                        status=scenarios.status_of(done))
 
@@ -346,6 +346,61 @@ _RUN_HINT = {
     "switching": "Hint: the switching check above says which state is wrong (at the goal stop; unsafe: "
                  "avoid_obstacles; at an obstacle: ao_and_gtg; otherwise go_to_goal)",
 }
+
+
+# how far from a threshold a true IR range must be to decide an event the code did not check (the
+# student's distances come from the raw readings through week 2's conversion: a few millimetres off)
+EVENT_MARGIN = 0.01
+
+
+def _run_hint(mode: str, runs: list[scenarios.Run]) -> str:
+    """The hint for missed runs. A switching run whose states all followed its events (as the trace
+    recorded them) and still hit an obstacle was steered there by the blend: "the switching check says
+    which state is wrong" would send the student to a check that passes (issue 21)."""
+    if mode != "switching":
+        return _RUN_HINT[mode]
+    for r in runs:
+        wrong = _state_against_events(r)
+        if wrong:
+            return f"{_RUN_HINT[mode]}; {wrong}"
+    if any(r.collision is not None for r in runs):
+        return ("Hint: every state of the run followed its events, and the robot still hit the obstacle: "
+                "near it the robot blends (ao_and_gtg), so the blend steered it there (the blend checks "
+                "above say how); replay the run")
+    return _RUN_HINT[mode]
+
+
+def _state_against_events(r: scenarios.Run) -> str | None:
+    """The first step whose state is not the one its events call for, in words, or None. An event the
+    code did not check in a step (an unsafe never asked) is read from the true IR ranges the step saw,
+    where they are clearly on one side of the week's threshold; a step left undecided is skipped."""
+    steps = r.trace.steps
+    ranges = steps.get("ir_range") or []
+
+    def event(name: str, i: int, threshold: float) -> bool | None:
+        said = (steps.get(name) or [None] * (i + 1))[i]
+        if said is not None or name == "at_goal" or not 1 <= i <= len(ranges):
+            return said
+        nearest = min(ranges[i - 1], default=None)   # a step acts on the ranges the step before left
+        if nearest is None or abs(nearest - threshold) < EVENT_MARGIN:
+            return None
+        return nearest < threshold
+
+    for i, state in enumerate(steps.get("state") or []):
+        at_goal, unsafe, near = (event("at_goal", i, 0.0), event("unsafe", i, D_UNSAFE),
+                                 event("at_obstacle", i, D_AT_OBS))
+        if at_goal is True:
+            want = "stop"
+        elif at_goal is False and unsafe is True:
+            want = "avoid_obstacles"
+        elif at_goal is False and unsafe is False and near is not None:
+            want = "ao_and_gtg" if near else "go_to_goal"
+        else:
+            continue
+        if state != want:
+            return (f"at t = {steps['t'][i]:.2f} s the events called for {want} and the state was "
+                    f"{str(state)[:40]!r}")
+    return None
 
 
 def switch_rate(ctx: Context) -> Outcome:
