@@ -96,7 +96,22 @@ def test_week5_blending_reports_its_goal(tmp_path, capsys):
     """Week 5 starts in ao_and_gtg, which drives to the goal too: the summary says whether it got there."""
     assert main(_args("week5", tmp_path, solutions=True, seconds=12.0)) == 0
     out = capsys.readouterr().out
-    assert "Goal (1, 1) reached: the robot stopped at t = 9.31 s" in out and "No collision" in out
+    assert ("Goal (1, 1) reached: the TRUE position came within 0.0492 m of it (d_stop = 0.05); the robot "
+            "stopped at t = 9.31 s, 0.0492 m from it (its estimate 0.0484 m from it") in out
+    assert "No collision" in out
+
+
+def test_the_goal_line_says_reached_as_grade_does_with_the_digits_that_decide(tmp_path, capsys):
+    """Issue 21: "not reached, 0.050 m (d_stop = 0.05)" beside "reached, 0.050 m". Reached is the TRUE
+    position within d_stop at some step (as grade judges it), shown with four decimals, and the estimate
+    the robot stopped by beside it (week 7 at dt 0.033: stopped by an estimate 0.0469 m away, the TRUE
+    position 0.0523 m away)."""
+    assert main(_args("week3", tmp_path, solutions=True, dt=0.01)) == 0
+    assert "reached: the TRUE position came within 0.0498 m of it (d_stop = 0.05)" in capsys.readouterr().out
+    assert main(_args("week7", tmp_path / "7", solutions=True, seconds=30.0)) == 0
+    out = capsys.readouterr().out
+    assert ("Goal (1.1, 1.1) not reached: the TRUE position came within 0.0523 m of it (d_stop = 0.05); the "
+            "robot stopped at t = 27.39 s, 0.0523 m from it (its estimate 0.0469 m from it") in out
 
 
 def test_a_submission_that_does_not_load_exits_1_with_file_and_line(tmp_path, capsys):
