@@ -294,6 +294,12 @@ def summary(week: Week, folder: Path, trace: Trace, sup: Supervisor, gate: Gate 
     else:
         path = sum(math.hypot(s["x"][k + 1] - s["x"][k], s["y"][k + 1] - s["y"][k]) for k in range(n))
         parts.append(f"Distance driven: {path:.2f} m.")
+    if "switches" in week.summary:
+        # what grade counts (several in one step too), so the README's figures can be checked here
+        seen = getattr(sup, "switches_seen", None)
+        if isinstance(seen, int):
+            rate = seen / trace.seconds if trace.seconds > 0 else 0.0
+            parts.append(f"Switches: {seen} ({rate:.1f} per second).")
     if gate is not None:
         parts.append(count_laps(s["x"], s["y"], s["t"], gate).words())
     return " ".join(parts)

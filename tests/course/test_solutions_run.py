@@ -155,3 +155,29 @@ def test_an_unwritable_output_folder_exits_2(tmp_path, capsys):
     blocker.write_text("")
     assert main(_args("week1", blocker / "out", solutions=True, seconds=0.1)) == 2
     assert "cannot write the trace" in capsys.readouterr().err
+
+
+def test_the_week5_readme_switch_counts_are_the_runs(tmp_path, capsys):
+    """Issue 21: the README promised 4 and about 20 switches where the runs (and the report) made 2 and 17.
+    The counts it gives are those of the course's switching, as the summary prints them."""
+    import re
+
+    from simiam.control.local_brain import LocalBrain
+    from simiam.course.loader import load_submission
+    from simiam.course.weeks import get_week
+    from simiam.simulator import Simulator
+    from simiam.world import load_world
+
+    readme = (ROOT / "assignments" / "week5" / "README.md").read_text(encoding="utf-8")
+    said = re.search(r"reaches \(1, 1\) with (\d+) switches and\s+\(-1, 1\) with (\d+)", readme)
+    assert said, "the README gives the switching runs' switch counts"
+    week = get_week(5)
+    sub = load_submission(ROOT / "solutions" / "week5", week)
+    made = []
+    for goal in ((1.0, 1.0), (-1.0, 1.0)):
+        brain = LocalBrain(sub, week, week.settings.with_changes(goal=goal, is_blending=False).as_dict())
+        Simulator(load_world(week.world), brain, week.spec, dt=week.dt).run(week.seconds)
+        made.append(brain.supervisor.switches_seen)
+    assert made == [int(said.group(1)), int(said.group(2))]
+    assert main(_args("week7", tmp_path, solutions=True, dt=0.05)) == 0
+    assert "Switches: 18 (0.3 per second)." in capsys.readouterr().out     # the week-7 README's 18
