@@ -202,12 +202,13 @@ def _one_switch(where: str, state: str, want: str, item: dict) -> None:
     should = int(want != state)
     # whole numbers as the worker's JSON gives them (2.0); anything else says nothing
     counts = [int(c) for c in (item.get("switches"), item.get("seen"))
-              if type(c) in (int, float) and math.isfinite(c) and c == int(c) and 0 <= c <= 10**6]
+              if isinstance(c, (int, float)) and not isinstance(c, bool) and math.isfinite(c)
+              and c == int(c) and 0 <= c <= 10**6]
     done = max(counts, default=should)
     if done == should:
         return
-    listed = item.get("path") if isinstance(item.get("path"), list) else []
-    path = [p for p in listed if isinstance(p, str)]
+    listed = item.get("path")
+    path = [p for p in listed if isinstance(p, str)] if isinstance(listed, list) else []
     went = f" ({' -> '.join(repr(p)[:40] for p in [state, *path])})" if path else ""
     if done > should:
         raise Mismatch(f"{where}, your block ended in {want!r}, right, but switched {done} times in that "

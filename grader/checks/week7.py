@@ -15,6 +15,7 @@ weeks' parts (grader.earlier), with the student's week-7 blocks in them.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 from grader import earlier, scenarios
 from grader import reference as ref
@@ -120,7 +121,7 @@ def sigma_solves(ctx: Context) -> Outcome:
     )
 
 
-def _sigma_slip(u_gtg: list, u_ao: list, u_fw: list, sigma: tuple) -> str:
+def _sigma_slip(u_gtg: list, u_ao: list, u_fw: list, sigma: Sequence[float]) -> str:
     """What a wrong sigma most likely got wrong: the matrix built by rows, a sign in Cramer's rule, or
     neither (issue 21: a sign slip was told to use u_gtg and u_ao as the columns)."""
     det = _det(u_gtg, u_ao)
