@@ -6,6 +6,7 @@ one judged."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from types import SimpleNamespace
 
 import pytest
@@ -45,17 +46,24 @@ def drawn_by_the_check(week: int, seed: int, monkeypatch: pytest.MonkeyPatch) ->
     return seen
 
 
+def kinds(week: int, part: Callable[[dict], object]) -> int:
+    """How many values of `part` the week's hidden set holds (a set may lack some start headings)."""
+    return len({part(v) for v in load_hidden(week)["variants"]})
+
+
 @pytest.mark.parametrize("seed", SEEDS)
 def test_week7_tries_three_start_headings(seed: int, monkeypatch: pytest.MonkeyPatch) -> None:
     drawn = drawn_by_the_check(7, seed, monkeypatch)
-    assert len(drawn) == 3 and len({turn_quarter(turn, of) for turn, of, _ in drawn}) == 3, drawn
+    headings = min(3, kinds(7, lambda v: turn_quarter(v["turn"], v["of"])))
+    assert len(drawn) == 3 and len({turn_quarter(turn, of) for turn, of, _ in drawn}) == headings, drawn
 
 
 @pytest.mark.parametrize("seed", SEEDS)
 def test_week6_tries_both_walls_and_three_start_quarters(seed: int, monkeypatch: pytest.MonkeyPatch) -> None:
     drawn = drawn_by_the_check(6, seed, monkeypatch)
     assert len(drawn) == 3 and {d for d, _, _ in drawn} == {"left", "right"}, drawn
-    assert len({heading_quarter(theta0) for _, theta0, _ in drawn}) == 3, drawn
+    quarters = min(3, kinds(6, lambda v: heading_quarter(v["theta0"])))
+    assert len({heading_quarter(theta0) for _, theta0, _ in drawn}) == quarters, drawn
 
 
 @pytest.mark.parametrize("seed", SEEDS)
