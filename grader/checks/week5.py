@@ -356,19 +356,19 @@ EVENT_MARGIN = 0.01
 
 def _run_hint(mode: str, runs: list[scenarios.Run]) -> str:
     """The hint for missed runs. A switching run whose states all followed its events (as the trace
-    recorded them) and still hit an obstacle was steered there by the blend: "the switching check says
-    which state is wrong" would send the student to a check that passes (issue 21)."""
+    recorded them) and still failed was steered by the blend: "the switching check says which state is
+    wrong" would send the student to a check that passes (issue 21)."""
     if mode != "switching":
         return _RUN_HINT[mode]
     for r in runs:
         wrong = _state_against_events(r)
         if wrong:
             return f"{_RUN_HINT[mode]}; {wrong}"
-    if any(r.collision is not None for r in runs):
-        return ("Hint: every state of the run followed its events, and the robot still hit the obstacle: "
-                "near it the robot blends (ao_and_gtg), so the blend steered it there (the blend checks "
-                "above say how); replay the run")
-    return _RUN_HINT[mode]
+    # the other controllers of the run are the course's (grader.earlier): with the states right, what is
+    # left of the student's is the blend (a collision, a pass too close or a goal missed alike)
+    return ("Hint: every state of the run followed its events, and the robot still failed: near an obstacle "
+            "it blends (ao_and_gtg), so the blend steered it there (the blend checks above say how); replay "
+            "the run")
 
 
 def _state_against_events(r: scenarios.Run) -> str | None:
