@@ -62,7 +62,7 @@ def package_version() -> str:
 # The code that decides a score besides the checks' own functions: a change here changes the hash too.
 _EXPECTED = Path(__file__).resolve().parent / "checks" / "expected"
 _SCORING_MODULES = ("grader.reference", "grader.properties", "grader.scenarios", "grader.inside.probes",
-                    "grader.checks.answers", "grader.hidden")
+                    "grader.checks.answers", "grader.hidden", "grader.hidden.draw")
 
 
 def check_set_hash(checks: list) -> str:

@@ -94,7 +94,9 @@ SIGNALS: dict[str, Signal] = {s.name: s for s in (
     _s("sigma_right", "vector2", doc="sliding mode, wall on the right: the last sigma sliding_right solved"),
     _s("fw_direction", "label", doc="follow-wall direction, 'left' or 'right'"),
     _s("d_prog", "scalar", doc="progress point: the closest the estimate has been to the goal", unit="m"),
-    _s("switches", "count", "switch_count", doc="how many times the supervisor switched state"),
+    # as they happen (Supervisor.switches_seen): several in one step, and a controller changed around
+    # switch_to_state, count too
+    _s("switches", "count", "switches_seen", doc="how many times the supervisor switched state"),
     # what check_event(name) returned this step (None: not checked this step)
     *(_s(event, "flag", "event_values", event, doc=f"the event {event}, as check_event gave it this step")
       for event in ("at_goal", "at_obstacle", "unsafe", "obstacle_cleared", "progress_made",

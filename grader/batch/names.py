@@ -56,6 +56,12 @@ def _utf8_size(name: str, what: str) -> int:
         raise SubmissionRefused(f"{what} {shown(name)!r} is not valid UTF-8; rename it") from None
 
 
+def undecodable(parts: tuple[str, ...]) -> bool:
+    """True for a path whose bytes on disk are not UTF-8 (``os.walk`` hands them over as surrogate
+    escapes): ``unzip`` writes such names for a zip made on Windows (``notes_caf\\xe9.txt`` in Latin-1)."""
+    return any(_has_surrogate(part) for part in parts)
+
+
 def check_student_id(sid: str) -> None:
     """Refuse an id that is not UTF-8, too long, or holds control or invisible characters
     (SubmissionRefused)."""

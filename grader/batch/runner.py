@@ -239,6 +239,8 @@ class _Run:
                                    "seconds": 0.0})
                 continue
             task["files"] = pack(submission.files)
+            if submission.notices:
+                task["notices"] = submission.notices
             yield task
 
     def longest_first(self) -> list[Student]:

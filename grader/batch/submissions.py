@@ -14,7 +14,7 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from grader.batch.names import MAX_DEPTH, check_path, check_paths, check_student_id, shown
+from grader.batch.names import MAX_DEPTH, check_path, check_paths, check_student_id, shown, undecodable
 from grader.batch.zips import JUNK_PARTS, Limits, SubmissionRefused, is_junk, read_zip
 from simiam.course.weeks import all_weeks
 
@@ -41,6 +41,7 @@ class Submission:
     sha256: str = ""
     refused: str | None = None
     root: str = ""     # the folder inside the zip/folder the files were taken from ("" = top level)
+    notices: list[str] = field(default_factory=list)   # what the student is told besides the checks
 
 
 def discover(batch_dir: Path) -> list[Student]:
@@ -75,7 +76,9 @@ def read_submission(student: Student, limits: Limits | None = None, week: int | 
         if student.kind == "link":
             raise SubmissionRefused(f"{student.path.name} is a link; links are not followed "
                                     "(copy the submission into the class folder)")
-        raw = read_zip(student.path, limits) if student.kind == "zip" else read_folder(student.path, limits)
+        skipped: list[str] = []
+        raw = read_zip(student.path, limits) if student.kind == "zip" \
+            else read_folder(student.path, limits, skipped)
         check_paths(list(raw))
         root, files = find_root(raw, week)
         if not files:
@@ -89,11 +92,24 @@ def read_submission(student: Student, limits: Limits | None = None, week: int | 
         return Submission(student, sha256=_hash_path(student.path),
                           refused=shown(f"the submission could not be read ({type(exc).__name__}: "
                                         f"{str(exc)[:300]})"))
-    return Submission(student, files=files, sha256=content_hash(files), root=root)
+    return Submission(student, files=files, sha256=content_hash(files, skipped), root=root,
+                      notices=[skipped_note(name) for name in skipped])
 
 
-def read_folder(folder: Path, limits: Limits | None = None) -> dict[str, bytes]:
-    """Read a student's folder with the zip limits. A link that leads outside the folder is refused."""
+def skipped_note(name: str) -> str:
+    """What the student reads about a file left out because its name is not UTF-8."""
+    return (f"{name}: its name is not valid UTF-8 (a zip made on Windows and unpacked elsewhere?); the "
+            f"grader does not use this file, so it was skipped")
+
+
+def read_folder(folder: Path, limits: Limits | None = None,
+                skipped: list[str] | None = None) -> dict[str, bytes]:
+    """Read a student's folder with the zip limits. A link that leads outside the folder is refused.
+
+    A file whose name is not UTF-8 is left out, named (as shown) in ``skipped``, when the grader would
+    not use it anyway (its name is none of the course's files): a student's ``notes_caf\\xe9.txt`` must not
+    cost their grade. Such a name on a course file is still refused (check_path), and so is any name when
+    ``skipped`` is None."""
     limits = limits or Limits()
     base = folder.resolve()
     files: dict[str, bytes] = {}
@@ -115,6 +131,9 @@ def read_folder(folder: Path, limits: Limits | None = None) -> dict[str, bytes]:
             path = here / name
             rel_parts = path.relative_to(folder).parts
             if is_junk(rel_parts):
+                continue
+            if skipped is not None and undecodable(rel_parts) and name not in STUDENT_FILES:
+                skipped.append(shown("/".join(rel_parts)))
                 continue
             check_path(rel_parts)
             if path.is_symlink():
@@ -180,11 +199,14 @@ def find_root(files: dict[str, bytes], week: int | None = None) -> tuple[str, di
     return f"{root}{best}", {p[len(prefix):]: d for p, d in files.items() if p.startswith(prefix)}
 
 
-def content_hash(files: dict[str, bytes]) -> str:
-    """SHA-256 of the files' names and bytes, independent of order, timestamps and zip packaging."""
+def content_hash(files: dict[str, bytes], skipped: list[str] | None = None) -> str:
+    """SHA-256 of the files' names and bytes, independent of order, timestamps and zip packaging, and of
+    the names of the files skipped (their notices are part of the result, so a rename regrades)."""
     digest = hashlib.sha256()
     for rel in sorted(files):
         digest.update(rel.encode() + b"\x00" + hashlib.sha256(files[rel]).digest())
+    for name in sorted(skipped or []):
+        digest.update(b"\x01skipped\x00" + name.encode())
     return digest.hexdigest()
 
 

@@ -4,7 +4,7 @@ A task is a plain dict, the same for the local pool and for Dask workers on othe
 
     {"student": "alice", "display": "alice.zip", "week": 3, "seed": 1234, "hidden": true,
      "sandbox": "auto", "grader": "<fingerprint>", "check_grader": false,
-     "files": {"go_to_goal.py": "<base64>", ...}}
+     "files": {"go_to_goal.py": "<base64>", ...}, "notices": ["notes.txt: ... skipped"] (optional)}
 
 The submission travels as its bytes (hashed by the runner), so a remote worker needs no shared disk and
 grades exactly what was hashed. ``check_grader`` (set for Dask) makes a grading machine whose installed
@@ -52,6 +52,10 @@ def grade_first(task: dict) -> Callable[[], dict]:
                                   # what the student types at home to replay a failing case: their own
                                   # ./assignments/weekN, not the batch's temporary folder
                                   replay_prefix=f"grade week{week}", traces=traces)
+    # What the runner left out of the submission (a file it could not name) is said beside the grading's
+    # own notices, in the report too.
+    result["notices"] = [*(n for n in task.get("notices") or [] if isinstance(n, str)),
+                         *(result.get("notices") or [])]
     # The temporary path differs on every run and machine; the student's own name does not. It is
     # replaced in the result's plain text, before the report renders (and escapes) it: never in HTML.
     renamed = replace_text(result, str(submission), task.get("display") or task["student"])

@@ -8,7 +8,6 @@ student's, so a mistake in the matrix costs the matrix check (and the runs), not
 from __future__ import annotations
 
 import math
-import random
 from collections.abc import Iterator
 from typing import Any
 
@@ -353,13 +352,15 @@ def week4_world(ctx: Context) -> Outcome:
 
 def other_starts(ctx: Context) -> Outcome:
     from grader.hidden import load_hidden
+    from grader.hidden.draw import draw, turn_quarter
 
     data = load_hidden(4)
     if not data:
         return Outcome(
             0.0, "the instructor's hidden set is not here (it runs at official grading)", status="error"
         )
-    picks = random.Random(f"{ctx.seed}:week4-variants").sample(data["variants"], 3)
+    picks = draw(data["variants"], 3, f"{ctx.seed}:week4-variants",
+                 lambda v: (turn_quarter(v["turn"], v["of"]), v["mirror"]))
     good, lines, runs, done, margins = 0, [], [], [], Margins()
     for v in picks:
         world = _variant(load_world("week4"), v["turn"], v["of"], v["mirror"])

@@ -15,7 +15,6 @@ geometry), so the sensor check does not depend on that week either.
 from __future__ import annotations
 
 import math
-import random
 from typing import Any
 
 from grader import earlier, scenarios
@@ -85,14 +84,16 @@ def _choice_problem(distances: list[float], direction: str, got: list[int]) -> s
     if i_1 == i_2 or i_1 not in side or i_2 not in side:
         return f"two different sensors of {', '.join(map(str, side))} ({direction} side)"
     (left_out,) = [k for k in side if k not in got]
-    for k in got:
+    for k in sorted(got, key=lambda k: (-distances[k], -side.index(k))):   # the one to drop first
         if distances[left_out] < distances[k] or (
             distances[left_out] == distances[k] and side.index(left_out) < side.index(k)
         ):
+            # say which one was left out: "sensor 3 ..., sensor 2 ..." read as if {3, 2} were expected
+            closer = "as close as" if distances[left_out] == distances[k] else "closer than"
             return (
-                f"the two closest of {', '.join(map(str, side))}: sensor {left_out} measures "
-                f"{fmt(distances[left_out])} m, sensor {k} {fmt(distances[k])} m (on a tie the first in that "
-                "order)"
+                f"the two closest of {', '.join(map(str, side))} (on a tie the first in that order): you "
+                f"left out sensor {left_out}, which measures {fmt(distances[left_out])} m, {closer} sensor "
+                f"{k} ({fmt(distances[k])} m) that you took"
             )
     if (i_1 < i_2) != (direction != "right"):
         return (
@@ -313,6 +314,15 @@ def _perpendicular(a: _Answer) -> None:
             f"and p_2 {_v(p_2)} (its part along the wall is {fmt(_dot(p, unit))} m): expected "
             "(u_a - u_p) - ((u_a - u_p) . u_fw_tp) u_fw_tp, with u_a = p_1 and u_p = (x, y)"
         )
+    to_wall = (p_1[0] - a.robot[0], p_1[1] - a.robot[1])
+    if abs(_cross((end[0] - p_1[0], end[1] - p_1[1]), unit)) > TOL and _dot(p, to_wall) < 0 \
+            and abs(_length(p) - distance) <= TOL:
+        # the right length the wrong way (u_p - u_a): say so, not only that it misses the wall (issue 21)
+        raise Mismatch(
+            f"{a.where} your u_fw_p was {_v(p)}: the right length ({fmt(distance)} m) but pointing away "
+            "from the wall, from the wall to the robot: expected (u_a - u_p) - ((u_a - u_p) . u_fw_tp) "
+            "u_fw_tp, from the robot (u_p) to the wall (u_a = p_1)"
+        )
     if abs(_cross((end[0] - p_1[0], end[1] - p_1[1]), unit)) > TOL:
         raise Mismatch(
             f"{a.where} your u_fw_p was {_v(p)} (length {fmt(_length(p))}): from the robot it does "
@@ -353,19 +363,29 @@ def _distance_part(a: _Answer) -> None:
 
 
 def _u_fw(a: _Answer) -> None:
-    """u_fw - u_fw_pp is d_fw times u_fw_tp."""
-    tp, pp, u = a["u_fw_tp"], a["u_fw_pp"], a["u_fw"]
+    """u_fw is d_fw times u_fw_tp plus the distance part: the one it must be (from the student's u_fw_p),
+    or the student's own u_fw_pp when that one is wrong (its check already says so). Judged on what u_fw
+    must be, not only on the student's u_fw_pp: the course's sp14 code keeps the unit vector of u_fw_p
+    under that name and writes u_fw = d_fw*u_fw_tp + (u_fw_p - d_fw*u_fw_pp), which is right (issue 21)."""
+    tp, p, pp, u = a["u_fw_tp"], a["u_fw_p"], a["u_fw_pp"], a["u_fw"]
     if _length(tp) <= 1e-9:
         raise Mismatch(
             f"{a.where} your u_fw_tp was {_v(tp)}: u_fw needs the direction along the wall (the "
             "u_fw_tp check says more)"
         )
-    rest = (u[0] - pp[0] - a.d_fw * tp[0], u[1] - pp[1] - a.d_fw * tp[1])
-    if _length(rest) > TOL:
+    n = _length(p)
+    parts = [pp] + ([(p[0] - a.d_fw * p[0] / n, p[1] - a.d_fw * p[1] / n)] if n > 1e-9 else [])
+    if all(_length((u[0] - part[0] - a.d_fw * tp[0], u[1] - part[1] - a.d_fw * tp[1])) > TOL
+           for part in parts):
         raise Mismatch(
-            f"{a.where} your u_fw was {_v(u)} with u_fw_tp = {_v(tp)} and u_fw_pp = {_v(pp)}: "
-            "expected d_fw * u_fw_tp + u_fw_pp"
+            f"{a.where} your u_fw was {_v(u)} with u_fw_tp = {_v(tp)} and u_fw_p = {_v(p)}: expected "
+            f"d_fw * u_fw_tp + u_fw_pp = {_v(_plus(a.d_fw, tp, parts[-1]))}, the distance part u_fw_pp "
+            "being u_fw_p - d_fw * u_fw_p / |u_fw_p|"
         )
+
+
+def _plus(k: float, v: tuple[float, float], w: tuple[float, float]) -> tuple[float, float]:
+    return (k * v[0] + w[0], k * v[1] + w[1])
 
 
 def settings(ctx: Context) -> Outcome:
@@ -511,13 +531,15 @@ def _visible(direction: str, theta0: float):
 
 def hidden_laps(ctx: Context) -> Outcome:
     from grader.hidden import load_hidden
+    from grader.hidden.draw import draw, heading_quarter
 
     data = load_hidden(6)
     if not data:
         return Outcome(
             0.0, "the instructor's hidden set is not here (it runs at official grading)", status="error"
         )
-    picks = random.Random(f"{ctx.seed}:week6-variants").sample(data["variants"], 3)
+    picks = draw(data["variants"], 3, f"{ctx.seed}:week6-variants",
+                 lambda v: (v["direction"], heading_quarter(v["theta0"])))
     good, lines, runs, done, margins = 0, [], [], [], Margins()
     for v in picks:
         label = f"on the {v['direction']}, start heading {fmt(v['theta0'])}, d_fw = {fmt(v['d_fw'])} m"

@@ -15,7 +15,7 @@ weeks' parts (grader.earlier), with the student's week-7 blocks in them.
 from __future__ import annotations
 
 import math
-import random
+from collections.abc import Sequence
 
 from grader import earlier, scenarios
 from grader import reference as ref
@@ -31,6 +31,9 @@ ALL = ("differential_drive.py", "quickbot.py", "go_to_angle.py", "go_to_goal.py"
        "ao_and_gtg.py", "follow_wall.py", "sliding_mode.py", "qb_supervisor.py")
 D_GOAL = 0.05  # the course's test 7.1: the TRUE position within 0.05 m of the goal
 EPSILON = 0.1  # the manual's slack in progress_made
+# Closer than d_prog by less than this counts as progress only for a rule with no slack to speak of: less
+# than the estimate moves on one encoder tick (2*pi*R/16 = 12.8 mm of a wheel, half that of the robot).
+STALL_GAP = 0.005
 HIDDEN_SECONDS = 60.0
 NAVIGATE_HINT = (
     "Hint: replay the run in the report and follow the state timeline: the robot must follow the wall when "
@@ -84,9 +87,7 @@ def sigma_solves(ctx: Context) -> Outcome:
         if max(abs(got[0] - u_fw[0]), abs(got[1] - u_fw[1])) > 1e-6 * scale:
             raise Mismatch(
                 f"{where}: your sigma ({fmt(sigma[0])}, {fmt(sigma[1])}) gives sigma_1 * u_gtg + sigma_2 * "
-                f"u_ao = {_v(got)}, not u_fw: solve [u_gtg u_ao] sigma = u_fw with u_gtg and u_ao as the "
-                "COLUMNS of the matrix (np.column_stack, or np.linalg.solve(A, u_fw) with A = [[u_gtg_x, "
-                "u_ao_x], [u_gtg_y, u_ao_y]])"
+                f"u_ao = {_v(got)}, not u_fw: {_sigma_slip(u_gtg, u_ao, u_fw, sigma)}"
             )
         want = sigma[0] > 0 and sigma[1] > 0
         if sliding != want:
@@ -121,6 +122,30 @@ def sigma_solves(ctx: Context) -> Outcome:
     )
 
 
+def _sigma_slip(u_gtg: list, u_ao: list, u_fw: list, sigma: Sequence[float]) -> str:
+    """What a wrong sigma most likely got wrong: the matrix built by rows, a sign in Cramer's rule, or
+    neither (issue 21: a sign slip was told to use u_gtg and u_ao as the columns)."""
+    det = _det(u_gtg, u_ao)
+    right = ((u_fw[0] * u_ao[1] - u_ao[0] * u_fw[1]) / det, (u_gtg[0] * u_fw[1] - u_fw[0] * u_gtg[1]) / det)
+    rows = ((u_fw[0] * u_ao[1] - u_gtg[1] * u_fw[1]) / det, (u_gtg[0] * u_fw[1] - u_ao[0] * u_fw[0]) / det)
+
+    def near(a: float, b: float) -> bool:
+        return abs(a - b) <= 1e-6 * max(1.0, abs(b))
+
+    columns = ("with u_gtg and u_ao as the COLUMNS of the matrix (np.column_stack, or np.linalg.solve(A, "
+               "u_fw) with A = [[u_gtg_x, u_ao_x], [u_gtg_y, u_ao_y]])")
+    if all(near(g, w) for g, w in zip(sigma, rows, strict=True)):
+        return (f"your sigma solves the system with u_gtg and u_ao as the ROWS; solve [u_gtg u_ao] sigma = "
+                f"u_fw {columns}")
+    flipped = [i + 1 for i in range(2) if near(sigma[i], -right[i]) and not near(right[i], 0.0)]
+    if flipped and all(near(abs(g), abs(w)) for g, w in zip(sigma, right, strict=True)):
+        which = " and ".join(f"sigma_{i}" for i in flipped)
+        return (f"{which} has the wrong sign, the right size: check the signs of Cramer's rule, sigma_1 = "
+                "(u_fw_x u_ao_y - u_ao_x u_fw_y) / det, sigma_2 = (u_gtg_x u_fw_y - u_fw_x u_gtg_y) / det, "
+                "det = u_gtg_x u_ao_y - u_ao_x u_gtg_y (or np.linalg.solve)")
+    return f"solve [u_gtg u_ao] sigma = u_fw {columns}"
+
+
 def _det(u_gtg: list, u_ao: list) -> float:
     return u_gtg[0] * u_ao[1] - u_ao[0] * u_gtg[1]
 
@@ -150,6 +175,27 @@ _PROGRESS = {"x_g": _coord, "y_g": _coord, "bearing": Floats(-math.pi, math.pi),
              "distance": Floats(0.0, 2.0), "d_prog": Floats(0.05, 2.5)}
 
 
+def _stalled_step(ctx: Context, goal: list, distance: float, d_prog: float) -> None:
+    """progress_made counted `distance`, a few millimetres closer than d_prog, as progress: then a step
+    in which the estimate did not move (no encoder tick: it stays at d_prog) must count too. A strict `<`
+    without slack says no there, and the automaton turns to the wall whenever the wheels' encoders miss a
+    tick (hidden goals then end in a collision). The manual's slack (`< d_prog - 0.1`) never gets here.
+
+    The estimate is put on the goal's x axis: its distance to the goal, |x_g - x|, is then the same last
+    bit in every way of computing a length (norm, np.linalg.norm, math.hypot, sqrt of squares)."""
+    estimate = [goal[0] + distance, goal[1], 0.0]
+    at = abs(goal[0] - estimate[0])
+    answer = ctx.probe("week7_progress", goal=goal, estimate=estimate, d_prog=at)
+    made = answer.get("progress") if isinstance(answer, dict) else None
+    if made is False:
+        raise Mismatch(f"with the goal {_v(goal)}, progress_made returned True with the estimate "
+                       f"{fmt(distance)} m from it and d_prog = {fmt(d_prog)} m, but False with d_prog = "
+                       f"{fmt(at)} m, the estimate exactly that far (where a step with no encoder tick "
+                       "leaves it after set_progress_point): with a strict < and no slack the automaton "
+                       "turns to the wall whenever the wheels do not tick. Use <= (at least as close as "
+                       "ever), or the manual's slack, < d_prog - 0.1")
+
+
 def progress_made(ctx: Context) -> Outcome:
     def case(ctx: Context, **values) -> None:
         goal, estimate, distance, d_prog = _distance_case(values)
@@ -168,11 +214,14 @@ def progress_made(ctx: Context) -> Outcome:
         if isinstance(answer.get("d_prog"), float) and answer["d_prog"] != d_prog:
             raise Mismatch(f"{where} progress_made changed d_prog to {fmt(answer['d_prog'])}: only "
                            "set_progress_point sets it")
+        if made and d_prog - STALL_GAP <= distance < d_prog:
+            _stalled_step(ctx, goal, distance, d_prog)
 
     examples = [
         {"x_g": 1.1, "y_g": 1.1, "bearing": 3.9, "distance": 0.5, "d_prog": 1.0},
         {"x_g": 1.1, "y_g": 1.1, "bearing": 3.9, "distance": 1.2, "d_prog": 1.0},
         {"x_g": -1.0, "y_g": 1.0, "bearing": 0.0, "distance": 0.0, "d_prog": 0.5},
+        {"x_g": 1.0, "y_g": 1.0, "bearing": 0.0, "distance": 0.4975, "d_prog": 0.5},   # a step's move closer
     ]
     return run_property(ctx, "week7.progress.made", _PROGRESS, case, examples=examples, max_examples=15,
                         passed="progress_made compares the distance to the goal with d_prog")
@@ -255,6 +304,12 @@ _EVENTS = ("at_goal", "at_obstacle", "unsafe", "obstacle_cleared", "progress_mad
 def _step(ctx: Context, situation: str, drawn: list[bool]) -> tuple[dict, dict]:
     state, direction, fixed, _, _ = SITUATIONS[situation]
     events = {name: fixed.get(name, drawn[i]) for i, name in enumerate(_EVENTS)}
+    # only what a robot can see at once (issue 21): unsafe is under d_unsafe < d_at_obs, so at_obstacle
+    # too; obstacle_cleared is all five over d_at_obs, so exactly not at_obstacle. An automaton that asks
+    # unsafe only inside its at_obstacle branch is the same automaton on the robot.
+    if events["unsafe"]:
+        events["at_obstacle"] = True
+    events["obstacle_cleared"] = not events["at_obstacle"]
     distances = _NEAR_RIGHT if "right" in situation else _NEAR_LEFT
     answer = ctx.probe("week7_step", state=state, fw_direction=direction, events=events, distances=distances)
     if not isinstance(answer, dict):
@@ -335,24 +390,41 @@ def navigate(ctx: Context, check_id: str, world: World, goal: tuple[float, float
     return True, f"{where} reached in {r.t_goal:.1f} s without a collision", details, r
 
 
+def navigate_hint(runs: list[scenarios.Run]) -> str:
+    """The hint for runs that missed their goal. When d_prog never moved in a run, the automaton never
+    calls set_progress_point: progress_made then always holds and no threshold helps, so the general
+    hint's "tune d_at_obs and d_unsafe" would send the student the wrong way (issue 21)."""
+    for r in runs:
+        kept = [d for d in r.trace.steps.get("d_prog", []) if type(d) in (int, float)]
+        if len(kept) > 1 and all(d == kept[0] for d in kept):
+            return (f"Hint: d_prog stayed at {fmt(kept[0])} m the whole run: your automaton never calls "
+                    "self.set_progress_point() when it makes progress, so progress_made always holds and the "
+                    "robot never turns to the wall (no tuning of d_at_obs or d_unsafe helps); the replay "
+                    "plots d_prog")
+    return NAVIGATE_HINT
+
+
 def release_goal(ctx: Context) -> Outcome:
     goal = ctx.config.settings.goal or (1.1, 1.1)
     margins = Margins()
     ok, text, details, r = navigate(ctx, "week7.navigate.release_goal", load_world(ctx.config.world), goal,
                                     "the trap world", ctx.config.seconds, margins)
-    hint = "" if ok or r.problem else f". {NAVIGATE_HINT}"
+    hint = "" if ok or r.problem else f". {navigate_hint([r])}"
     return Outcome(float(ok), f"from inside the trap: {text}{hint}",
                    {**details, "margins": margins.to_json()}, status=scenarios.status_of([r]))
 
 
 def other_goals(ctx: Context) -> Outcome:
     from grader.hidden import load_hidden
+    from grader.hidden.draw import draw, turn_quarter
 
     data = load_hidden(7)
     if not data:
         return Outcome(0.0, "the instructor's hidden set is not here (it runs at official grading)",
                        status="error")
-    picks = random.Random(f"{ctx.seed}:week7-variants").sample(data["variants"], 3)
+    # three different start headings (issue 21: seed 2014 once drew three variants turned 0 degrees)
+    picks = draw(data["variants"], 3, f"{ctx.seed}:week7-variants",
+                 lambda v: (turn_quarter(v["turn"], v["of"]),))
     good, lines, runs, done, margins = 0, [], [], [], Margins()
     for v in picks:
         world, goal = turned(load_world(ctx.config.world), tuple(v["goal"]), v["turn"], v["of"])
@@ -363,7 +435,7 @@ def other_goals(ctx: Context) -> Outcome:
         runs.append({"variant": v, **details})
         done.append(r)
     missed = good < 3 and not any(r.problem for r in done)
-    return Outcome(good / 3, "; ".join(lines) + (f". {NAVIGATE_HINT}" if missed else ""),
+    return Outcome(good / 3, "; ".join(lines) + (f". {navigate_hint(done)}" if missed else ""),
                    {"runs": runs, "traces": scenarios.trace_keys(done), "margins": margins.to_json()},
                    status=scenarios.status_of(done))
 

@@ -60,7 +60,9 @@ def blend(sub, week: int, calls: list[dict]) -> list[dict[str, Any]]:
 def switching(sub, week: int, cases: list[dict]) -> list[dict[str, Any]]:
     """For each case {"state": first state, "distances": [5 IR distances], "at_goal": bool}: a fresh
     QBSupervisor (is_blending off, the goal at the estimate's start or 1 m away), switched to `state`, then
-    one execute. Returns per case the state it ended in and how many switches it counted."""
+    one execute. Returns per case the state it ended in, how many switches it counted (switch_count), how
+    many happened (switches_seen: also a controller changed around switch_to_state) and the states switched
+    into, in order."""
     from grader.inside.probes import plain
 
     out = []
@@ -71,10 +73,13 @@ def switching(sub, week: int, cases: list[dict]) -> list[dict[str, Any]]:
         supervisor.is_blending = False
         supervisor.goal = (0.0, 0.0) if case["at_goal"] else (1.0, 0.0)
         supervisor.switch_to_state(case["state"])
-        before = supervisor.switch_count
+        supervisor.settle()
+        before, seen = supervisor.switch_count, supervisor.switches_seen
         supervisor.execute(0.05)
         out.append({"state": plain(supervisor.current_state),
-                    "switches": plain(supervisor.switch_count - before)})
+                    "switches": plain(supervisor.switch_count - before),
+                    "seen": plain(supervisor.switches_seen - seen),
+                    "path": [plain(p) for p in supervisor.switched_into]})
     return out
 
 

@@ -66,15 +66,20 @@ def week7_progress_point(sub, week: int, goal: list, estimate: list, d_prog: flo
 
 def week7_step(sub, week: int, state: str, fw_direction: str, events: dict, distances: list,
                dt: float = 0.05) -> Any:
-    """One QBSupervisor.execute in `state` (with fw_direction set) where check_event(name) answers
-    `events[name]`: the state afterwards, fw_direction, and the direction FollowWall was run with (None
-    when another controller ran)."""
+    """One QBSupervisor.execute in `state` (with fw_direction set) where check_event(name), and the event's
+    own method (self.<name>()), answer `events[name]`: the state afterwards, fw_direction, and the
+    direction FollowWall was run with (None when another controller ran)."""
     from grader.inside.probes import plain
 
     supervisor, _ = _on_robot(sub, week, distances)
     supervisor.switch_to_state(state)
     supervisor.fw_direction = fw_direction
     supervisor.events = {name: (lambda value=bool(events[name]): value) for name in EVENTS}
+    # An automaton may read an event by calling its method (self.progress_made()) as well as through
+    # check_event: both must answer the grader's value, or a right automaton is judged on events it
+    # computed itself (issue 21).
+    for name, answer in supervisor.events.items():
+        setattr(supervisor, name, answer)
     follow_wall = supervisor.controllers.get("follow_wall")
     seen: dict[str, Any] = {}
     if follow_wall is not None:

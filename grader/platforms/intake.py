@@ -10,19 +10,23 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from grader.batch.submissions import STUDENT_FILES, find_root, pack, read_folder, unpack
+from grader.batch.submissions import STUDENT_FILES, find_root, pack, read_folder, skipped_note, unpack
 from grader.batch.zips import SubmissionRefused, read_zip
 from simiam.course.weeks import get_week
 
 __all__ = ["SubmissionRefused", "collect"]
 
 
-def collect(upload: Path, week: int, into: Path) -> Path:
+def collect(upload: Path, week: int, into: Path, notices: list[str] | None = None) -> Path:
     """Write the student's week files from the platform's upload folder `upload` into `into` (created)
-    and return it. Raises SubmissionRefused with a reason the student can act on."""
+    and return it. Raises SubmissionRefused with a reason the student can act on. A file the grader does
+    not use whose name is not UTF-8 is skipped and said in `notices`."""
     if not upload.is_dir():
         raise SubmissionRefused("no submission was uploaded")
-    files = read_folder(upload)
+    skipped: list[str] = []
+    files = read_folder(upload, skipped=skipped)
+    if notices is not None:
+        notices.extend(skipped_note(name) for name in skipped)
     if not any(p.rsplit("/", 1)[-1] in STUDENT_FILES for p in files):
         zips = [p for p in files if p.lower().endswith(".zip")]
         if len(zips) > 1:

@@ -107,7 +107,8 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None) ->
         os.environ["SIMIAM_HANDOUT"] = str(fill_from)
     filled = []
     with tempfile.TemporaryDirectory(prefix="simiam-upload-") as tmp:
-        folder = collect(upload, secret.week, Path(tmp) / f"week{secret.week}")
+        skipped: list[str] = []
+        folder = collect(upload, secret.week, Path(tmp) / f"week{secret.week}", skipped)
         if fill_from is not None:
             # only the files the student writes nothing in this week: a missing file to write is named as
             # missing by the grader, not silently replaced by its placeholder
@@ -118,6 +119,7 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None) ->
         result = grade_submission(secret.week, folder, seed=secret.seed, hidden=True, sandbox="auto")
     result["submission"] = "your upload"     # not the grader's temporary path
     result.setdefault("notices", []).extend(missing_note(secret.week, name, True) for name in filled)
+    result["notices"][:0] = skipped
     return result
 
 

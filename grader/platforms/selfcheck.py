@@ -9,10 +9,12 @@ where they say so):
 - every kept wrong version (COURSE/tests/data/wrong/*.patch, a `# aims:` line naming the checks it aims
   at, `none` for a correct alternative) loses exactly those checks and no other.
 
-It prints one line per expectation and exits 1 when any failed. See docs/ci-selfcheck.yml. Under the
-solutions' line it prints the margin of each scenario check (grader.margins): how far the reference's
-figures are from their limits; under a wrong version's line, how far its figures are on the failing side of
-the scenario checks it aims at. A verdict with little to spare is one a last bit could flip.
+It prints one line per expectation, then per week how many kept wrong versions each check catches and
+which checks catch none (a check no wrong version loses is not proven able to fail), and exits 1 when any
+expectation failed. See docs/ci-selfcheck.yml. Under the solutions' line it prints the margin of each
+scenario check (grader.margins): how far the reference's figures are from their limits; under a wrong
+version's line, how far its figures are on the failing side of the scenario checks it aims at. A verdict
+with little to spare is one a last bit could flip.
 """
 
 from __future__ import annotations
@@ -39,6 +41,8 @@ class Expectation:
     hidden: bool
     verdict: Callable[[dict], str | None]
     margins: Callable[[dict], list[str]] | None = None  # the margin lines printed under the verdict
+    wrong_version: bool = False           # a kept wrong version: what it lost counts toward coverage
+    lost: frozenset[str] | None = None    # the checks it lost, once graded
 
 
 def full_marks(result: dict) -> str | None:
@@ -125,12 +129,17 @@ def run_selfcheck(course: Path, weeks: list[int], wrong: Path | None = None, see
     for path in stale:
         out(f"FAIL  stubs: {path} differs from what solutions/ generates (python -m simiam.course.stubs)")
     failures += len(stale)
+    graded: list[Expectation] = []
     with tempfile.TemporaryDirectory(prefix="simiam-selfcheck-") as tmp:
         for exp in _expectations(course, weeks, wrong, Path(tmp), generated.files, out):
             if exp is None:
                 failures += 1
                 continue
             failures += check_one(exp, seed, out)
+            graded.append(exp)
+    for week in weeks:
+        out(coverage(week, [e.lost for e in graded
+                            if e.wrong_version and e.week == week and e.lost is not None]))
     out(f"selfcheck: {'all expectations held' if not failures else f'{failures} failed'}")
     return 0 if failures == 0 else 1
 
@@ -168,13 +177,31 @@ def _expectations(course: Path, weeks: list[int], wrong: Path | None, tmp: Path,
             continue
         what = ", ".join(sorted(mistake.aims)) or "nothing (a correct alternative)"
         exps.append(Expectation(f"wrong {patch.stem} (loses {what})", mistake.week, folder, False,
-                                loses_exactly(mistake.aims), caught_margins(mistake.aims)))
+                                loses_exactly(mistake.aims), caught_margins(mistake.aims),
+                                wrong_version=True))
     return exps
+
+
+def coverage(week: int, lost: list[frozenset[str]]) -> str:
+    """One line: per check of `week`, how many of the kept wrong versions (what each `lost`) it catches,
+    and the checks none catches. Kept versions are graded without the hidden checks, so a hidden check is
+    named apart: the hidden runs of the same scenarios are proven by tests/grader/test_hidden_week*.py."""
+    from grader.checks import checks_for_week
+
+    checks = checks_for_week(week)
+    counts = {c.id: sum(c.id in one for one in lost) for c in checks}
+    caught = ", ".join(f"{cid} {n}" for cid, n in counts.items() if n)
+    none = [c.id for c in checks if not counts[c.id] and c.visibility != "hidden"]
+    hidden = [c.id for c in checks if not counts[c.id] and c.visibility == "hidden"]
+    line = f"coverage week{week} ({len(lost)} kept wrong versions): {caught or 'no check catches one'}"
+    line += f"; caught by none: {', '.join(none)}" if none else "; every visible check catches one"
+    return line + (f" (hidden, not graded here: {', '.join(hidden)})" if hidden else "")
 
 
 def check_one(exp: Expectation, seed: int, out=print) -> int:
     """Grade one expectation, print its line; 1 when it failed."""
     result = grade_submission(exp.week, exp.folder, seed=seed, hidden=exp.hidden)
+    exp.lost = frozenset(c["id"] for c in result.get("checks", []) if c["points"] < c["max_points"])
     problem = exp.verdict(result)
     out(f"{'ok  ' if problem is None else 'FAIL'}  {exp.label}"
         f"{'' if problem is None else ': ' + problem}  [{result['score']:g}/{result['max_score']:g}]")

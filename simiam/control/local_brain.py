@@ -48,6 +48,7 @@ class LocalBrain:
         self.supervisor = supervisor_class()
         self.supervisor.attach_robot(self.robot, Pose2D(*(start or week.start)))
         self.apply_settings(settings or {})
+        self.supervisor.settle()      # the run's switches are counted from the state it starts in
 
     def apply_settings(self, settings: dict) -> None:
         """Override the supervisor's settings and controller gains (see the class docstring)."""

@@ -97,6 +97,14 @@ class Supervisor:
         self.d_unsafe = 0.10
         # switches between states; setting the first state (from none) is not a switch
         self.switch_count = 0
+        # The switches as they happen, what the grader judges (issue 21): every change of state, several
+        # in one step included (stop -> go_to_goal -> stop resets two controllers), and a change of the
+        # controller that runs even when current_state was left alone. Counted by execute_controller from
+        # the state the run settled in (settle()); switch_count is the course's own counter, kept as is.
+        self.switches_seen = 0
+        self.switched_into: list[str] = []       # the states the last step switched into, in order
+        self._into_in_step: list[str] = []
+        self._last_run: Controller | None = None
         # limits of the unicycle model, set by attach_robot as in the original
         self.v_max_w0 = 0.0
         self.w_max_v0 = 0.0
@@ -135,6 +143,7 @@ class Supervisor:
         self.current_controller.reset()
         if previous is not None:
             self.switch_count += 1
+            self._into_in_step.append(name)
 
     def check_event(self, name: str) -> bool:
         """Evaluate the event called `name`: "at_goal", "at_obstacle", "unsafe" or "obstacle_cleared".
@@ -184,9 +193,22 @@ class Supervisor:
         """Run the current controller and return its (v, w); remembered in `self.outputs` for plots."""
         if self.current_controller is None:
             raise ValueError("no controller is running: call self.switch_to_state(name) in __init__ first")
-        v, w = self.current_controller.execute(self.robot, self.state_estimate, inputs, dt)
+        runs = self.current_controller
+        # a step's switches: each change of state, or at least one when another controller runs than
+        # last step (current_controller set directly, around switch_to_state)
+        moved = self._last_run is not None and runs is not self._last_run
+        into, self._into_in_step = self._into_in_step, []
+        self.switched_into = into[:10]
+        self.switches_seen += max(len(into), int(moved))
+        self._last_run = runs
+        v, w = runs.execute(self.robot, self.state_estimate, inputs, dt)
         self.outputs = (v, w)
         return v, w
+
+    def settle(self) -> None:
+        """The run starts here: the state set so far (in __init__, by a run's settings) is where the
+        switches are counted from (switches_seen)."""
+        self._into_in_step, self._last_run = [], self.current_controller
 
     # -- the robot ------------------------------------------------------------------------------
     def attach_robot(self, robot, pose: Pose2D) -> None:

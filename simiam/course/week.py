@@ -34,8 +34,9 @@ EXTRA_SETTINGS = ("d_at_obs", "d_unsafe", "is_blending", "d_fw", "fw_direction",
 # The course's states (the controllers the solutions add): a setting named after one gives its gains.
 STATES = ("stop", "go_to_angle", "go_to_goal", "avoid_obstacles", "ao_and_gtg", "follow_wall")
 # The lines `simiam run` can print after a run (simiam/run.py `summary`): the distance driven, the heading
-# error to theta_d, the goal reached or not (a run without a goal prints the distance instead).
-SUMMARY_LINES = ("path", "heading", "goal")
+# error to theta_d, the goal reached or not (a run without a goal prints the distance instead), the
+# switches (as grade counts them: Supervisor.switches_seen).
+SUMMARY_LINES = ("path", "heading", "goal", "switches")
 
 
 def unknown_setting(name: object, known: Iterable[str], where: str, kind: str = "setting") -> ValueError:

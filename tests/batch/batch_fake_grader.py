@@ -36,7 +36,8 @@ def result_for(task: dict, score: float) -> dict:
                "max_points": 0.0,
                "status": "passed", "message": "", "details": {}, "visibility": "hidden"}]
     return {"week": week, "score": float(score), "max_score": 10.0, "status": "graded", "seed": task["seed"],
-            "grader_version": "fake", "submission": task["student"], "checks": checks}
+            "grader_version": "fake", "submission": task["student"], "checks": checks,
+            "notices": list(task.get("notices") or [])}
 
 
 def fake_grade(task: dict) -> dict:

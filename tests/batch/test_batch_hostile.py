@@ -82,10 +82,10 @@ def test_an_unexpected_error_reading_one_submission_is_that_submissions_problem(
     make_class(tmp_path / "class", {"a": "score 1", "b": "score 2"})
     real = submissions.read_folder
 
-    def explode(folder: Path, limits: object = None) -> dict:
+    def explode(folder: Path, limits: object = None, skipped: list[str] | None = None) -> dict:
         if folder.name == "a":
             raise KeyError("something nobody foresaw")
-        return real(folder, limits)
+        return real(folder, limits, skipped)
 
     monkeypatch.setattr(submissions, "read_folder", explode)
     report = run_batch(options(tmp_path), grade_fn=FAKE)
@@ -237,3 +237,43 @@ def test_the_lock_file_goes_with_the_run(tmp_path: Path) -> None:
     assert not (out / store.LOCK).exists()
     with store.exclusive(out):                      # and the folder can be locked again
         pass
+
+
+# ---- issue 21 item 7: a file the grader does not use never costs the grade -------------------------------
+
+def test_a_latin1_name_on_a_file_the_grader_does_not_use_is_skipped_and_said(tmp_path: Path) -> None:
+    """``unzip`` of a zip made on Windows writes ``notes_café.txt`` in Latin-1: the student is graded, and
+    told the file was skipped. The same bytes on a course file (a folder holding it) still refuse."""
+    klass = make_class(tmp_path / "class", {"alice": "score 7", "bob": "score 6"})
+    with open(os.path.join(os.fsencode(klass / "alice"), b"notes_caf\xe9.txt"), "wb") as stream:
+        stream.write(b"my notes\n")
+    bad_folder = os.path.join(os.fsencode(klass / "bob"), b"\xc9tape")
+    os.mkdir(bad_folder)
+    with open(os.path.join(bad_folder, b"go_to_goal.py"), "wb") as stream:
+        stream.write(b"K = 1\n")
+    report = run_batch(options(tmp_path), grade_fn=FAKE)
+    alice_row = report["per_student"]["alice"]
+    assert (alice_row["status"], alice_row["score"]) == ("graded", 7.0)
+    alice = json.loads((tmp_path / "out" / "alice.json").read_text())
+    assert len(alice["notices"]) == 1 and alice["notices"][0].startswith("notes_caf\ufffd.txt: its name is "
+                                                                         "not valid UTF-8")
+    assert "skipped" in alice["notices"][0]
+    assert report["per_student"]["bob"]["status"] == "invalid"
+    bob = json.loads((tmp_path / "out" / "bob.json").read_text())
+    assert "not valid UTF-8; rename it" in bob["message"]
+    read = submissions.read_submission(submissions.Student("alice", klass / "alice", "folder"))
+    assert sorted(read.files) == ["answer.txt"]
+    renamed = submissions.content_hash(read.files)              # a rename of the skipped file regrades
+    assert read.sha256 != renamed
+
+
+def test_the_runners_notices_reach_the_students_result(monkeypatch) -> None:
+    """What the runner skipped travels in the task and comes first among the result's notices (and so in
+    the report, which renders them)."""
+    from grader.batch import task as task_module
+
+    monkeypatch.setattr(task_module, "grade_submission", lambda **kw: {"status": "graded",
+                                                                         "notices": ["from the grading"]})
+    second = task_module.grade_first({"student": "alice", "week": 3, "seed": 1, "hidden": False,
+                                      "files": pack({"a.py": b"x"}), "notices": ["skipped one"]})
+    assert second.args[0]["notices"] == ["skipped one", "from the grading"]

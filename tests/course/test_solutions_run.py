@@ -96,7 +96,22 @@ def test_week5_blending_reports_its_goal(tmp_path, capsys):
     """Week 5 starts in ao_and_gtg, which drives to the goal too: the summary says whether it got there."""
     assert main(_args("week5", tmp_path, solutions=True, seconds=12.0)) == 0
     out = capsys.readouterr().out
-    assert "Goal (1, 1) reached: the robot stopped at t = 9.31 s" in out and "No collision" in out
+    assert ("Goal (1, 1) reached: the TRUE position came within 0.0492 m of it (d_stop = 0.05); the robot "
+            "stopped at t = 9.31 s, 0.0492 m from it (its estimate 0.0484 m from it") in out
+    assert "No collision" in out
+
+
+def test_the_goal_line_says_reached_as_grade_does_with_the_digits_that_decide(tmp_path, capsys):
+    """Issue 21: "not reached, 0.050 m (d_stop = 0.05)" beside "reached, 0.050 m". Reached is the TRUE
+    position within d_stop at some step (as grade judges it), shown with four decimals, and the estimate
+    the robot stopped by beside it (week 7 at dt 0.033: stopped by an estimate 0.0469 m away, the TRUE
+    position 0.0523 m away)."""
+    assert main(_args("week3", tmp_path, solutions=True, dt=0.01)) == 0
+    assert "reached: the TRUE position came within 0.0498 m of it (d_stop = 0.05)" in capsys.readouterr().out
+    assert main(_args("week7", tmp_path / "7", solutions=True, seconds=30.0)) == 0
+    out = capsys.readouterr().out
+    assert ("Goal (1.1, 1.1) not reached: the TRUE position came within 0.0523 m of it (d_stop = 0.05); the "
+            "robot stopped at t = 27.39 s, 0.0523 m from it (its estimate 0.0469 m from it") in out
 
 
 def test_a_submission_that_does_not_load_exits_1_with_file_and_line(tmp_path, capsys):
@@ -140,3 +155,29 @@ def test_an_unwritable_output_folder_exits_2(tmp_path, capsys):
     blocker.write_text("")
     assert main(_args("week1", blocker / "out", solutions=True, seconds=0.1)) == 2
     assert "cannot write the trace" in capsys.readouterr().err
+
+
+def test_the_week5_readme_switch_counts_are_the_runs(tmp_path, capsys):
+    """Issue 21: the README promised 4 and about 20 switches where the runs (and the report) made 2 and 17.
+    The counts it gives are those of the course's switching, as the summary prints them."""
+    import re
+
+    from simiam.control.local_brain import LocalBrain
+    from simiam.course.loader import load_submission
+    from simiam.course.weeks import get_week
+    from simiam.simulator import Simulator
+    from simiam.world import load_world
+
+    readme = (ROOT / "assignments" / "week5" / "README.md").read_text(encoding="utf-8")
+    said = re.search(r"reaches \(1, 1\) with (\d+) switches and\s+\(-1, 1\) with (\d+)", readme)
+    assert said, "the README gives the switching runs' switch counts"
+    week = get_week(5)
+    sub = load_submission(ROOT / "solutions" / "week5", week)
+    made = []
+    for goal in ((1.0, 1.0), (-1.0, 1.0)):
+        brain = LocalBrain(sub, week, week.settings.with_changes(goal=goal, is_blending=False).as_dict())
+        Simulator(load_world(week.world), brain, week.spec, dt=week.dt).run(week.seconds)
+        made.append(brain.supervisor.switches_seen)
+    assert made == [int(said.group(1)), int(said.group(2))]
+    assert main(_args("week7", tmp_path, solutions=True, dt=0.05)) == 0
+    assert "Switches: 18 (0.3 per second)." in capsys.readouterr().out     # the week-7 README's 18

@@ -80,3 +80,16 @@ def test_what_cannot_be_graded_is_refused_with_a_reason(tmp_path: Path, case: st
         collect(upload, 3, tmp_path / "out")
     assert not (tmp_path / "out").exists()
     assert not (tmp_path / "results").exists()
+
+
+def test_a_latin1_name_the_grader_does_not_use_is_skipped_and_said(tmp_path: Path):
+    """Issue 21 item 7: ``notes_café.txt`` in Latin-1 (as unzip writes a zip made on Windows) beside the
+    course files is skipped and named in the notices, not a refusal."""
+    upload = tmp_path / "upload"
+    _copy(upload)
+    with open(os.path.join(os.fsencode(upload), b"notes_caf\xe9.txt"), "wb") as stream:
+        stream.write(b"notes\n")
+    notices: list[str] = []
+    folder = collect(upload, 3, tmp_path / "out", notices)
+    assert sorted(p.name for p in folder.iterdir()) == NAMES
+    assert len(notices) == 1 and notices[0].startswith("notes_caf\ufffd.txt: its name is not valid UTF-8")

@@ -91,3 +91,20 @@ def test_the_ci_workflow_installs_the_checkout_and_runs_the_selfcheck():
     assert any("simiam.course.stubs --check" in r for r in runs)
     assert any("grade handout" in r for r in runs)
     assert steps[0]["uses"].startswith("actions/checkout@")
+
+
+def test_the_coverage_line_counts_what_each_check_catches_and_names_those_that_catch_none():
+    """Issue 21: per week, how many kept wrong versions each check catches, and which catch none."""
+    from grader.platforms.selfcheck import coverage
+
+    line = coverage(7, [frozenset({"week7.sliding.sigma"}), frozenset({"week7.sliding.sigma",
+                                                                      "week7.navigate.release_goal"}),
+                        frozenset()])
+    assert line.startswith("coverage week7 (3 kept wrong versions): week7.sliding.sigma 2, "
+                           "week7.navigate.release_goal 1; caught by none: ")
+    assert "week7.fsm.transitions" in line.split("caught by none: ")[1]
+    assert "(hidden, not graded here: week7.navigate.other_goals)" in line
+    every = coverage(7, [frozenset({c}) for c in ("week7.sliding.sigma", "week7.progress.made",
+                                                  "week7.progress.point", "week7.fsm.transitions",
+                                                  "week7.navigate.release_goal")])
+    assert "every visible check catches one" in every

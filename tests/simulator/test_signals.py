@@ -145,7 +145,7 @@ class _Supervisor:
     current_controller = _Controller()
     outputs = (np.float32(0.5), 2)
     fw_direction = "right"
-    switch_count = np.int64(3)
+    switches_seen = np.int64(3)
     event_values = {"at_goal": np.bool_(True)}
 
 

@@ -47,5 +47,5 @@ WEEK = Week(
     debug_signals=("v", "w", "theta_g", "u_ao", "ir_points_wf", "u_gtg", "u_ao_gtg", "switches", "at_goal",
                    "at_obstacle", "unsafe", "obstacle_cleared"),
     hidden_variants="other start poses and goals, blending and switching",
-    summary=("goal",),
+    summary=("goal", "switches"),
 )

@@ -99,5 +99,5 @@ WEEK = Week(
                    "d_prog", "switches", "at_goal", "at_obstacle", "unsafe", "obstacle_cleared",
                    "progress_made", "sliding_left", "sliding_right", "sigma_left", "sigma_right"),
     hidden_variants="other goals and start headings in the trap world",
-    summary=("goal",),
+    summary=("goal", "switches"),
 )
