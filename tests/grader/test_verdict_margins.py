@@ -48,7 +48,7 @@ FLIPPED = [
 def configurations() -> list[tuple[str, float]]:
     """(kernel, nudge) of every configuration compared with official grading: each other kernel this CPU runs
     from the declared start, and the official kernel from the nudged starts."""
-    kernels = runnable() or [OFFICIAL_KERNEL]
+    kernels = runnable()  # the official kernel first: the machine runs it (the fixture skips otherwise)
     return ([(k, 0.0) for k in kernels if k != OFFICIAL_KERNEL]
             + [(OFFICIAL_KERNEL, NUDGE), (OFFICIAL_KERNEL, -NUDGE)])
 
@@ -60,7 +60,8 @@ WANTED = list(versions()) if FULL else FLIPPED
 def official() -> dict:
     """The verdicts of official grading: the official kernel, the declared start."""
     graded = grade_in_process(OFFICIAL_KERNEL, 0.0, WANTED)
-    assert graded["numerics"].get("official") is True, graded["numerics"]
+    if graded["numerics"].get("official") is not True:  # no OpenBLAS, or a CPU without AVX2 and FMA
+        pytest.skip(f"this machine cannot run official grading's numerics: {graded['numerics'].get('note')}")
     return graded
 
 
