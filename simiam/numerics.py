@@ -156,26 +156,19 @@ def _loaded_libraries() -> list[str]:
     return found
 
 
-def _call_text(library: object, symbols: tuple[str, ...]) -> str | None:
+def _call(library: object, symbols: tuple[str, ...], text: bool) -> str | int | None:
+    """OpenBLAS's answer from the first of `symbols` the library has (each numpy wheel generation names
+    them differently): text (a C string) or an int; None where the library has none of them."""
     import ctypes
 
     for symbol in symbols:
         function = getattr(library, symbol, None)
         if function is not None:
-            function.restype = ctypes.c_char_p
+            function.restype = ctypes.c_char_p if text else ctypes.c_int
             value = function()
+            if not text:
+                return int(value)
             return value.decode("ascii", "replace").strip()[:200] if value else None
-    return None
-
-
-def _call_int(library: object, symbols: tuple[str, ...]) -> int | None:
-    import ctypes
-
-    for symbol in symbols:
-        function = getattr(library, symbol, None)
-        if function is not None:
-            function.restype = ctypes.c_int
-            return int(function())
     return None
 
 
@@ -205,9 +198,11 @@ def describe() -> dict[str, object]:
     import numpy
 
     library = _openblas()
-    kernel = _call_text(library, _CORENAME_SYMBOLS) if library is not None else None
-    config = _call_text(library, _CONFIG_SYMBOLS) if library is not None else None
-    threads = _call_int(library, _THREAD_SYMBOLS) if library is not None else None
+    kernel, config, threads = (_call(library, symbols, text) if library is not None else None
+                               for symbols, text in ((_CORENAME_SYMBOLS, True), (_CONFIG_SYMBOLS, True),
+                                                     (_THREAD_SYMBOLS, False)))
+    kernel = kernel if isinstance(kernel, str) else None
+    config = config if isinstance(config, str) else None
     enabled, avx512 = _numpy_simd()
     machine = _machine()
     problems = []
