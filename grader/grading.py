@@ -30,6 +30,7 @@ from simiam import safe_write
 from simiam.course.shipped import files_to_write, missing_note, shipped_version
 
 DEFAULT_SEED = 2014
+HIDDEN_OUTPUT_CHARS = 1500  # per hidden check: shown in its own Gradescope test (4000 characters in all)
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -290,14 +291,21 @@ def _grade(job: _Job, started: _Started) -> dict:
             open_session=lambda folder: _open_session(job, folder, others),
             start_nudge=job.start_nudge,
         )
-        results: list[CheckResult] = []
-        timing = {}
+        timing: dict[str, float] = {}
+        ran: dict[str, CheckResult] = {}
+        # Visible checks first: what the code prints until then is the result's student_output. Then each
+        # hidden check, its output taken after it into its own result: code that prints (or keeps and
+        # prints later) a hidden goal shows it only where that check's result is shown.
+        visible = [c for c in job.selected if c.visibility == "visible"]
+        for check in visible:
+            ran[check.id] = _run_timed(check, ctx, problems, timing)
+        job.extra["student_output"] = cut_middle(session.take_output(), 4000)
         for check in job.selected:
-            t0 = time.monotonic()
-            results.append(run_check(check, ctx, problems))
-            timing[check.id] = round(time.monotonic() - t0, 3)
+            if check.id not in ran:
+                ran[check.id] = _run_timed(check, ctx, problems, timing)
+                ran[check.id].printed = cut_middle(session.take_output(), HIDDEN_OUTPUT_CHARS)
+        results = [ran[check.id] for check in job.selected]
         job.extra["problems"] = problems
-        job.extra["student_output"] = cut_middle(session.output(), 4000)
         job.extra["timing"] = {"total_seconds": round(time.monotonic() - job.began, 3), "checks": timing}
     finally:
         session.close()
@@ -312,6 +320,14 @@ def _grade(job: _Job, started: _Started) -> dict:
         message=loss_summary(results, problems),
         extra=job.extra,
     )
+
+
+def _run_timed(check: Check, ctx: Context, problems: dict[str, list[str]],
+               timing: dict[str, float]) -> CheckResult:
+    t0 = time.monotonic()
+    result = run_check(check, ctx, problems)
+    timing[check.id] = round(time.monotonic() - t0, 3)
+    return result
 
 
 def _invalid(

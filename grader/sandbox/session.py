@@ -144,6 +144,17 @@ class StudentSession:
             texts.append(self._worker.output.text())
         return "\n".join(t for t in texts if t)
 
+    def take_output(self) -> str:
+        """`output()`, and start afresh: what the student's code prints from now on is not in what this
+        returned, nor in any later `output()` before the next take. The grader takes the output of the
+        visible checks before a hidden check runs, and each hidden check's after it (grader.grading)."""
+        texts = [o.text() for o in self._outputs]
+        self._outputs.clear()
+        if self._worker is not None:
+            self._worker.output.settle()
+            texts.append(self._worker.output.take())
+        return "\n".join(t for t in texts if t)
+
     def close(self) -> None:
         """Kill the worker and everything it started; remove the private copy of the submission."""
         if self._worker is not None:
