@@ -56,6 +56,7 @@ class _Job:
     traces: dict[str, dict]
     began: float
     start_nudge: tuple[float, float] = (0.0, 0.0)
+    official: bool = False
 
 
 def select_checks(week: int, hidden: bool, only: str | None = None) -> tuple[list[Check], list[Check]]:
@@ -167,6 +168,7 @@ def grade_submission(
     replay_prefix: str | None = None,
     traces: dict[str, dict] | None = None,
     start_nudge: tuple[float, float] = (0.0, 0.0),
+    official: bool = False,
 ) -> dict:
     """Grade one submission folder for course week `week` and return the result JSON (see the module doc).
 
@@ -174,6 +176,8 @@ def grade_submission(
     property (the replay line a failing property prints). Scenario traces go into `traces` (by check id)
     when a dict is given, and into the HTML report when `out_dir` is given. `start_nudge` (dx, dy) m moves
     the true start pose of every scenario run (Context.start_nudge; tests only, never a command line).
+    `official` says this is a platform's official grading (grader.platforms.official): where that machine
+    lacks part of the sandbox, the isolation note says so, not "local check only" (capabilities).
     """
     week = int(week)
     submission = Path(submission)
@@ -181,7 +185,8 @@ def grade_submission(
     began = time.monotonic()
     with tempfile.TemporaryDirectory(prefix="simiam-grade-") as tmp:
         # the worker starts first: it boots while the checks (and the report's templates) are imported
-        started = _start(week, submission, Path(tmp), limits, sandbox) if submission.is_dir() else None
+        started = _start(week, submission, Path(tmp), limits, sandbox, official) \
+            if submission.is_dir() else None
         try:
             selected, left_out = select_checks(week, hidden, only)
             if out_dir is not None and started is not None:
@@ -196,7 +201,7 @@ def grade_submission(
                 return _finish(result, traces, out_dir)
             try:
                 job = _Job(week, submission, seed, hidden, sandbox, case, limits, replay_prefix, selected,
-                           extra, traces, began, (float(start_nudge[0]), float(start_nudge[1])))
+                           extra, traces, began, (float(start_nudge[0]), float(start_nudge[1])), official)
                 result = _grade(job, started)
             except CourseFilesMissing:
                 raise
@@ -221,11 +226,12 @@ class _Started:
     error: Exception | None = None
 
 
-def _start(week: int, submission: Path, tmp: Path, limits: Limits | None, sandbox: str) -> _Started:
+def _start(week: int, submission: Path, tmp: Path, limits: Limits | None, sandbox: str,
+           official: bool = False) -> _Started:
     """Splice the submission and spawn its worker without waiting for it (StudentSession.start)."""
     try:
         spliced, problems, notices = _splice(week, submission, tmp)
-        session = StudentSession(week, spliced, limits, sandbox=sandbox)
+        session = StudentSession(week, spliced, limits, sandbox=sandbox, official=official)
     except Exception as exc:  # noqa: BLE001 - raised again by _grade, where grade_submission handles it
         return _Started(error=exc)
     session.start()
@@ -234,7 +240,7 @@ def _start(week: int, submission: Path, tmp: Path, limits: Limits | None, sandbo
 
 def _open_session(job: _Job, folder: Path, others: list[StudentSession]) -> StudentSession:
     """A worker on another folder for one check (closed with the grading's own)."""
-    other = StudentSession(job.week, folder, job.limits, sandbox=job.sandbox)
+    other = StudentSession(job.week, folder, job.limits, sandbox=job.sandbox, official=job.official)
     others.append(other)
     other.start()
     return other

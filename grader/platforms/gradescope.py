@@ -102,7 +102,7 @@ def summary_html(result: dict, config: dict) -> str:
         lines.append("Note: " + esc(cap(note, 500)))
     isolation = result.get("isolation")
     if isolation:
-        lines.append(f"Isolation ({esc(str(isolation))}): {esc(cap(result.get('isolation_note'), 600))}")
+        lines.append(f"Isolation ({esc(str(isolation))}): {esc(cap(result.get('isolation_note'), 1600))}")
     numerics = result.get("numerics")
     if isinstance(numerics, dict) and numerics.get("note"):  # the platform's CPU could not be pinned
         lines.append("Numerics: " + esc(cap(numerics.get("note"), 600)))

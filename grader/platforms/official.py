@@ -116,7 +116,8 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None) ->
                 if not (folder / path.name).exists() and path.name not in files_to_write(secret.week):
                     (folder / path.name).write_bytes(path.read_bytes())
                     filled.append(path.name)
-        result = grade_submission(secret.week, folder, seed=secret.seed, hidden=True, sandbox="auto")
+        result = grade_submission(secret.week, folder, seed=secret.seed, hidden=True, sandbox="auto",
+                                  official=True)
     result["submission"] = "your upload"     # not the grader's temporary path
     result.setdefault("notices", []).extend(missing_note(secret.week, name, True) for name in filled)
     result["notices"][:0] = skipped

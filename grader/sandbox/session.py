@@ -54,7 +54,7 @@ class StudentSession:
     def __init__(self, week: int, spliced_dir: Path | str, limits: Limits | None = None, *,
                  sandbox: str = "auto", probes: str = "grader.inside.probes", probes_file: Path | None = None,
                  extra_paths: tuple[str, ...] = (),
-                 loader: str = "simiam.course.loader:load_submission") -> None:
+                 loader: str = "simiam.course.loader:load_submission", official: bool = False) -> None:
         self.week = int(week)
         self.spliced_dir = Path(spliced_dir).resolve()
         self.limits = limits or Limits()
@@ -69,7 +69,8 @@ class StudentSession:
         self._outputs: list[CappedText] = []
         self._load: dict | None = None
         self._load_death: WorkerDied | None = None
-        self.isolation_note = self._base_note = isolation.describe(self.isolation)
+        # official: a platform's official grading, whose note never says "local check only"
+        self.isolation_note = self._base_note = isolation.describe(self.isolation, official=official)
         self.numerics: dict[str, object] = numerics.checked(None)  # what the worker reports when it starts
         self._spawned: float | None = None  # when a worker was spawned that is not waited for yet
         self.seconds_used = 0.0      # wall time of calls, counted against limits.total_seconds
