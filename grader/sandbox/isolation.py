@@ -120,7 +120,8 @@ def bwrap_works() -> tuple[bool, str]:
     except (OSError, subprocess.TimeoutExpired) as exc:
         return False, f"bubblewrap failed to start: {exc}"
     if done.returncode != 0:
-        return False, "bubblewrap cannot create a sandbox here: " + done.stderr.decode(errors="replace")[:300]
+        why = done.stderr.decode(errors="replace")[:300].strip()
+        return False, f"bubblewrap cannot create a sandbox here: {why}"
     return True, ""
 
 
