@@ -23,7 +23,7 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 # Docker's default capability set (moby's oci/caps/defaults.go)
@@ -58,7 +58,7 @@ class Container:
 
     binds: dict[str, Path]
     namespaces: bool
-    files: dict[str, Path] = field(default_factory=dict)   # single files bound read-only (/usr/local/bin/...)
+    extra_caps: tuple[str, ...] = ()   # added to Docker's defaults (docs/platforms.md names them)
 
     def argv(self) -> list[str]:
         args = ["bwrap", "--die-with-parent", "--unshare-pid", "--ro-bind", "/usr", "/usr"]
@@ -71,10 +71,9 @@ class Container:
                  "--tmpfs", "/root", "--tmpfs", "/usr/local"]   # nothing of this host's /usr/local
         for inside, host in sorted(self.binds.items()):
             args += ["--bind", str(host), inside]
-        for inside, host in sorted(self.files.items()):
-            args += ["--ro-bind", str(host), inside]
         if not self.namespaces:
-            args += ["--cap-drop", "ALL"] + [a for cap in DOCKER_CAPS for a in ("--cap-add", f"CAP_{cap}")]
+            caps = DOCKER_CAPS + self.extra_caps
+            args += ["--cap-drop", "ALL"] + [a for cap in caps for a in ("--cap-add", f"CAP_{cap}")]
         return args + ["--clearenv", "--setenv", "PATH", "/usr/local/bin:/usr/bin:/bin", "--setenv", "HOME",
                        "/root", "--setenv", "LANG", "C.UTF-8", "--chdir", "/"]
 

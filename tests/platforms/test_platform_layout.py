@@ -128,6 +128,21 @@ def test_gradescope(gradescope_image, secrets, tmp_path, kind, upload):
             results["output"] + json.dumps(results["tests"]))
 
 
+def test_with_the_two_capabilities_the_doc_names_bubblewrap_works(gradescope_image):
+    # docs/platforms.md: a container started with Docker's defaults plus SYS_ADMIN and NET_ADMIN (and, on a
+    # real Docker, a seccomp profile and AppArmor that allow mounts) runs the full sandbox
+    root = gradescope_image / "autograder"
+    for part in ("submission", "results"):
+        shutil.rmtree(root / part, ignore_errors=True)
+        (root / part).mkdir()
+    _loose(ROOT / "solutions" / "week3", root / "submission")
+    box = _gs_container(gradescope_image, namespaces=False)
+    box.extra_caps = ("SYS_ADMIN", "NET_ADMIN")
+    done = box.run(["/autograder/source/run_autograder"])
+    results = json.loads((root / "results" / "results.json").read_text())
+    assert "Isolation (bwrap)" in results["output"] and results["score"] == 12.5, done.stdout
+
+
 def _expect(upload: str, score: float, passed: dict[str, bool], text: str) -> None:
     """What each upload earns, on either platform (score of 12.5 points)."""
     if upload in ("reference", "zip_with_top_folder", "print_hidden_goals"):
