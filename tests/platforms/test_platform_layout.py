@@ -14,13 +14,15 @@ from __future__ import annotations
 import json
 import re
 import shutil
+import subprocess
+import sys
 import zipfile
 from collections.abc import Callable
 from pathlib import Path
 
 import pytest
 from conftest import SEED, extract
-from container import Container, usable
+from container import PYTHON, Container, usable
 from mistakes import ROOT, build
 from platform_specs import gradescope_violations, prairielearn_violations
 
@@ -84,17 +86,38 @@ def _leaks(text: str, secrets: list[re.Pattern]) -> list[str]:
     return [p.pattern for p in secrets if p.search(text)]
 
 
+@pytest.fixture(scope="module")
+def wheelhouse(gradescope_zip, tmp_path_factory) -> Path:
+    """The wheel's dependencies, fetched once for both images: their pip installs then read them from here
+    (PIP_NO_INDEX, PIP_FIND_LINKS, which setup.sh's and the Dockerfile's pip honour) instead of the index."""
+    house = tmp_path_factory.mktemp("wheelhouse")
+    with zipfile.ZipFile(gradescope_zip) as archive:
+        wheel = next(n for n in archive.namelist() if n.endswith(".whl"))
+        (house / Path(wheel).name).write_bytes(archive.read(wheel))
+    version = subprocess.run([PYTHON, "-c", "import sys; print('%d.%d' % sys.version_info[:2])"],
+                             capture_output=True, text=True, check=True).stdout.strip()
+    done = subprocess.run([sys.executable, "-m", "pip", "download", "--quiet", "--only-binary=:all:",
+                           "--python-version", version, "--dest", str(house), str(house / Path(wheel).name)],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return house
+
+
+OFFLINE = {"PIP_NO_INDEX": "1", "PIP_FIND_LINKS": "/wheelhouse"}
+
+
 # ---- Gradescope ----------------------------------------------------------------------------------------
 
 @pytest.fixture(scope="module")
-def gradescope_image(gradescope_zip, tmp_path_factory) -> Path:
+def gradescope_image(gradescope_zip, wheelhouse, tmp_path_factory) -> Path:
     """/autograder/source unpacked and setup.sh run, as Gradescope builds its image (Docker's defaults)."""
     base = tmp_path_factory.mktemp("gs-image")
     (base / "autograder" / "source").mkdir(parents=True)
     (base / "venv").mkdir()
     extract(gradescope_zip, base / "autograder" / "source")
-    done = _gs_container(base, namespaces=False).run(["bash", "/autograder/source/setup.sh"],
-                                                    {"SIMIAM_SKIP_APT": "1"})
+    box = _gs_container(base, namespaces=False)
+    box.binds["/wheelhouse"] = wheelhouse
+    done = box.run(["bash", "/autograder/source/setup.sh"], {"SIMIAM_SKIP_APT": "1", **OFFLINE})
     assert done.returncode == 0, done.stdout + done.stderr
     assert "setup: isolation subprocess with a dedicated uid (bubblewrap cannot create" in done.stdout
     return base
@@ -160,7 +183,7 @@ def _expect(upload: str, score: float, passed: dict[str, bool], text: str) -> No
 # ---- PrairieLearn --------------------------------------------------------------------------------------
 
 @pytest.fixture(scope="module")
-def pl_image(tmp_path_factory) -> Path:
+def pl_image(wheelhouse, tmp_path_factory) -> Path:
     """The question built, and its image built by replaying the Dockerfile's COPY and RUN steps (all but
     the apt-get one, which installs what the host has) into folders bound at the image's paths."""
     from grader.cli import main
@@ -172,6 +195,7 @@ def pl_image(tmp_path_factory) -> Path:
     for folder in ("opt-simiam", "venv", "local-bin"):
         (base / folder).mkdir()
     box = _pl_container(base, None, namespaces=False)
+    box.binds["/wheelhouse"] = wheelhouse
     places = {"/opt/simiam/": base / "opt-simiam", "/usr/local/bin/": base / "local-bin"}
     lines = (out / "image" / "Dockerfile").read_text().replace("\\\n", " ").splitlines()
     for line in lines:
@@ -187,7 +211,7 @@ def pl_image(tmp_path_factory) -> Path:
                 dest.parent.mkdir(parents=True, exist_ok=True)
                 shutil.copy(out / "image" / source, dest)
         elif step == "RUN" and "apt-get" not in rest:
-            done = box.run(["sh", "-c", rest])
+            done = box.run(["sh", "-c", rest], OFFLINE)
             assert done.returncode == 0, f"{line}\n{done.stdout}{done.stderr}"
     return base
 
