@@ -108,8 +108,9 @@ def summary_html(result: dict, config: dict) -> str:
         lines.append("Numerics: " + esc(cap(numerics.get("note"), 600)))
     printed = result.get("student_output")
     if printed:
-        # its first and last lines, as the result keeps them (grader.sandbox.output), in Gradescope's room
-        lines.append("What your code printed (its first and last lines):<pre>"
+        # its first and last lines, as the result keeps them (grader.sandbox.output), in Gradescope's room;
+        # only what it printed during the visible checks: a hidden check's is in that check's test
+        lines.append("What your code printed during the visible checks (its first and last lines):<pre>"
                      + esc(keep_ends(str(printed), 2000, whole_lines=True)) + "</pre>")
     return "\n".join(lines)
 
