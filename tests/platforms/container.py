@@ -15,7 +15,8 @@ Two kinds of container:
 
 The platform's Python is the host's /usr/bin/python3 (a Debian python3 with venv, as in the PrairieLearn
 image's debian:bookworm-slim); the apt step of setup.sh is skipped (SIMIAM_SKIP_APT=1): it would install
-what is already there. pip reaches the package index as the platforms' builds do.
+what is already there. pip reaches the package index from the host's network settings (NETWORK_ENV); the
+layout test fetches the dependencies once into a wheelhouse that both images install from.
 """
 
 from __future__ import annotations
