@@ -21,6 +21,7 @@ layout test fetches the dependencies once into a wheelhouse that both images ins
 
 from __future__ import annotations
 
+import functools
 import os
 import shutil
 import subprocess
@@ -37,6 +38,7 @@ NETWORK_ENV = ("PIP_CERT", "PIP_DEFAULT_TIMEOUT", "PIP_INDEX_URL", "PIP_EXTRA_IN
                "no_proxy", "NO_PROXY")
 
 
+@functools.lru_cache(maxsize=1)
 def usable() -> str:
     """Why containers cannot be made here ("" when they can): bubblewrap as root, and a Debian-like
     /usr/bin/python3 with venv, as the platforms' images have."""
