@@ -22,6 +22,7 @@ import argparse
 import html
 import os
 import shutil
+import stat
 import sys
 import tempfile
 import time
@@ -137,6 +138,7 @@ def run(root: Path) -> int:
     began = time.monotonic()
     config: dict = {"week": 0, "hidden_visibility": "after_published"}
     try:
+        close_metadata(root)
         config = read_config(root / "source" / "config.json")
         secret = read_secret(root / "source" / "secret")
         try:
@@ -159,6 +161,20 @@ def run(root: Path) -> int:
                                    "instructor can see why and will regrade.",
                          "extra_data": {"error": type(exc).__name__}})
         return 1
+
+
+def close_metadata(root: Path) -> None:
+    """Close Gradescope's root/submission_metadata.json to every user but root before student code runs.
+    It holds the student's earlier submissions with their whole results, hidden tests' output included,
+    and is readable by all: without bubblewrap the worker's uid could read it. The grader never reads it."""
+    path = root / "submission_metadata.json"
+    try:
+        if stat.S_ISREG(os.lstat(path).st_mode):    # never through a link
+            os.chmod(path, 0o600)
+    except FileNotFoundError:
+        pass
+    except OSError as exc:   # grading goes on; the log (instructors only) says what stayed open
+        print(f"could not close {path}: {exc}")
 
 
 def check(root: Path) -> int:
