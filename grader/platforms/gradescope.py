@@ -166,7 +166,8 @@ def run(root: Path) -> int:
 def close_metadata(root: Path) -> None:
     """Close Gradescope's root/submission_metadata.json to every user but root before student code runs.
     It holds the student's earlier submissions with their whole results, hidden tests' output included,
-    and is readable by all: without bubblewrap the worker's uid could read it. The grader never reads it."""
+    and Gradescope does not say who may read it: without bubblewrap the worker's uid might. The grader
+    never reads it."""
     path = root / "submission_metadata.json"
     try:
         if stat.S_ISREG(os.lstat(path).st_mode):    # never through a link

@@ -135,8 +135,8 @@ def test_gradescope(gradescope_image, secrets, tmp_path, kind, upload):
         shutil.rmtree(root / part, ignore_errors=True)
         (root / part).mkdir()
     _upload(upload, "gradescope", tmp_path)(root / "submission")
-    # what Gradescope puts beside them, readable by all: the student's earlier submissions with their whole
-    # results, hidden tests' output included
+    # what Gradescope puts beside them (its mode undocumented; here readable by all): the student's earlier
+    # submissions with their whole results, hidden tests' output included
     metadata = root / "submission_metadata.json"
     metadata.write_text(json.dumps({"id": 1, "users": [{"name": "A Student"}], "previous_submissions": [
         {"score": 12.5, "results": {"tests": [{"name": "week3.go_to_goal.other_goals", "visibility":
