@@ -92,9 +92,11 @@ def read_config(path: Path) -> dict:
     return data
 
 
-def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None) -> dict:
+def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None,
+                 note_filled: bool = True) -> dict:
     """Grade the upload folder of one student with the bundle's seed and hidden set (every check).
-    Course files missing from the upload are taken from `fill_from` (the handout) when it is given.
+    Course files missing from the upload are taken from `fill_from` (the handout) when it is given, with a
+    notice for each unless `note_filled` is false (a platform whose students cannot submit those files).
 
     Returns the contract's result; a refused upload (no course files, hostile zip, ...) raises
     SubmissionRefused with the reason to show the student."""
@@ -118,7 +120,8 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None) ->
                     filled.append(path.name)
         result = grade_submission(secret.week, folder, seed=secret.seed, hidden=True, sandbox="auto")
     result["submission"] = "your upload"     # not the grader's temporary path
-    result.setdefault("notices", []).extend(missing_note(secret.week, name, True) for name in filled)
+    result.setdefault("notices", []).extend(missing_note(secret.week, name, True)
+                                             for name in filled if note_filled)
     result["notices"][:0] = skipped
     return result
 
