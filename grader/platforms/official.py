@@ -110,7 +110,13 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None,
     filled = []
     with tempfile.TemporaryDirectory(prefix="simiam-upload-") as tmp:
         skipped: list[str] = []
-        folder = collect(upload, secret.week, Path(tmp) / f"week{secret.week}", skipped)
+        folder = Path(tmp) / f"week{secret.week}"
+        if fill_from is not None and not files_to_write(secret.week) and _empty(upload):
+            # a week with nothing to write (week 1): a question with no editor submits no file at all, and
+            # what is graded is the handout itself
+            folder.mkdir()
+        else:
+            folder = collect(upload, secret.week, folder, skipped)
         if fill_from is not None:
             # only the files the student writes nothing in this week: a missing file to write is named as
             # missing by the grader, not silently replaced by its placeholder
@@ -124,6 +130,10 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None,
                                              for name in filled if note_filled)
     result["notices"][:0] = skipped
     return result
+
+
+def _empty(upload: Path) -> bool:
+    return upload.is_dir() and not any(upload.iterdir())
 
 
 def installed_answers() -> list[str]:
