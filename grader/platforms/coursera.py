@@ -82,9 +82,9 @@ def feedback(result: dict, config: dict) -> tuple[dict, str]:
                    "their details are not shown." if hidden else "")
     notes = shown["message"].splitlines()[1:]        # its first line is the points, said in `head`
     rows = [(t["points"] >= t["max_points"], t) for t in shown["tests"]]
-    text = "\n".join([head, *notes, hidden_line, *(
+    text = "\n".join(line for line in [head, *notes, hidden_line, *(
         f"{'ok' if ok else 'FAILED'}  {t['description'] or t['name']}  {t['points']:g}/{t['max_points']:g}"
-        f": {t['message']}" for ok, t in rows)]).strip()
+        f": {t['message']}" for ok, t in rows)] if line)
     esc = html.escape
     page = [f"<h2>{esc(head)}</h2>", *(f"<p>{esc(n)}</p>" for n in notes)]
     if hidden_line:
