@@ -169,6 +169,46 @@ def test_an_upload_to_another_part_is_not_graded_and_says_where_it_belongs(cours
 
 @pytest.mark.slow
 @pytest.mark.sandbox
+def test_in_a_container_like_courseras_the_image_paths_work_without_root(coursera, autograder, tmp_path):
+    # bubblewrap lays out what Coursera's container has: the build folder at /opt/simiam, the venv at
+    # /opt/simiam-venv, the submission at /shared/submission, no network, and a grader that is not root
+    # (uid 1000, owning the secret as simiam-grader does in the image); /dev/null over bwrap stands for a
+    # container that forbids user namespaces, so student code runs in a plain subprocess
+    shared = tmp_path / "shared"
+    (shared / "submission").mkdir(parents=True)
+    _loose(ROOT / "solutions" / "week3")(shared / "submission")
+    venv = autograder.venv
+    base = subprocess.run([str(venv / "bin" / "python"), "-c", "import sys; print(sys.base_prefix)"],
+                          capture_output=True, text=True, check=True).stdout.strip()
+    system = []
+    for top in ("bin", "lib", "lib64", "sbin"):
+        path = Path("/") / top
+        if path.is_symlink():
+            system += ["--symlink", str(path.readlink()), str(path)]
+        elif path.is_dir():
+            system += ["--ro-bind", str(path), str(path)]
+    argv = ["bwrap", "--unshare-user", "--uid", "1000", "--gid", "1000", "--unshare-net", "--unshare-pid",
+            "--die-with-parent", "--ro-bind", "/usr", "/usr", *system, "--ro-bind", "/etc", "/etc",
+            "--ro-bind", base, base, "--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp",
+            "--ro-bind", str(coursera), "/opt/simiam", "--ro-bind", str(venv), "/opt/simiam-venv",
+            "--bind", str(shared), "/shared", "--ro-bind", "/dev/null", shutil.which("bwrap"),
+            "--clearenv", "--setenv", "PATH", "/usr/local/bin:/usr/bin:/bin", "--setenv", "partId", PART,
+            "/opt/simiam/simiam-coursera-grade"]
+    done = subprocess.run(argv, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0 and done.stdout == "", done.stdout + done.stderr
+    assert coursera_violations(shared) == []
+    result = json.loads((shared / "feedback.json").read_text())
+    assert result["fractionalScore"] == 1.0
+    text = result["feedback"] + (shared / "htmlFeedback.html").read_text()
+    assert "isolation: subprocess: official grading, on a platform that does not offer the full sandbox: " \
+           "your code ran in a plain subprocess" in result["feedback"]
+    # the sandbox's words for a student's own machine would point at an official grading that is this one
+    assert "local check only" not in text and "Official grading runs it in the full sandbox" not in text
+    assert str(SEED) not in text
+
+
+@pytest.mark.slow
+@pytest.mark.sandbox
 def test_the_hidden_goals_searched_for_are_in_what_the_hidden_checks_report():
     # so that their absence from every feedback above means something: graded here, the hidden checks'
     # own messages name exactly these goals
