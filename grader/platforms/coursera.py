@@ -78,8 +78,10 @@ def feedback(result: dict, config: dict) -> tuple[dict, str]:
     week = int(result.get("week", config.get("week", 0)))
     head = f"Week {week}: {result.get('score', 0):g} / {result.get('max_score', 0):g} points"
     hidden = int(config.get("hidden_checks", 0))
-    hidden_line = (f"{hidden} of the checks are hidden ({hidden_variants(week)}): their points count, "
-                   "their details are not shown." if hidden else "")
+    hidden_line = "" if not hidden else (
+        f"{hidden} of the checks {'is' if hidden == 1 else 'are'} hidden ({hidden_variants(week)}): "
+        f"{'its' if hidden == 1 else 'their'} points count, {'its' if hidden == 1 else 'their'} details are "
+        "not shown.")
     notes = shown["message"].splitlines()[1:]        # its first line is the points, said in `head`
     rows = [(t["points"] >= t["max_points"], t) for t in shown["tests"]]
     text = "\n".join(line for line in [head, *notes, hidden_line, *(
