@@ -248,3 +248,14 @@ def test_hidden_details_stay_out_and_student_text_is_escaped():
 def test_the_contract_validator_catches_what_coursera_rejects(broken: dict, tmp_path: Path):
     (tmp_path / "feedback.json").write_text(json.dumps(broken))
     assert coursera_violations(tmp_path)
+
+
+@pytest.mark.parametrize("part", ["bad id!", "", "x" * 65, "Zb6wb\n"])
+def test_a_part_id_coursera_could_not_have_given_stops_the_build_before_anything_is_written(
+        part: str, tmp_path: Path, capsys):
+    from grader.cli import main
+
+    out = tmp_path / "out"
+    assert main(["package", "coursera", "week3", "--out", str(out), "--part-id", part,
+                 "--course", str(ROOT)]) == 2
+    assert "Coursera part ids are short words" in capsys.readouterr().err and not out.exists()
