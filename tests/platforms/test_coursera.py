@@ -62,7 +62,7 @@ def _grade(coursera: Path, autograder, tmp_path: Path, fill, part: str = PART) -
                           timeout=600)
     assert done.returncode == 0 and done.stdout == "", done.stdout + done.stderr   # stdout: nothing at all
     assert coursera_violations(shared) == []
-    page = (shared / "htmlFeedback.html").read_text()
+    page = (shared / "htmlFeedback.html").read_text() if (shared / "htmlFeedback.html").exists() else ""
     graded = Graded(json.loads((shared / "feedback.json").read_text()), page, done.stderr)
     shown = json.dumps(graded.feedback) + page
     assert str(SEED) not in shown and str(SEED) not in graded.log
@@ -165,6 +165,20 @@ def test_an_upload_to_another_part_is_not_graded_and_says_where_it_belongs(cours
     graded = _grade(coursera, autograder, tmp_path, _loose(ROOT / "solutions" / "week3"), part="xYz12")
     assert graded.feedback["fractionalScore"] == 0.0
     assert "part simW3" in graded.feedback["feedback"] and "part xYz12" in graded.feedback["feedback"]
+
+
+@pytest.mark.slow
+def test_a_secret_others_can_read_stops_grading_with_a_grader_error(coursera, autograder, tmp_path):
+    secret = coursera / "secret"
+    secret.chmod(0o755)
+    try:
+        graded = _grade(coursera, autograder, tmp_path, _loose(ROOT / "solutions" / "week3"))
+    finally:
+        secret.chmod(0o700)
+    assert graded.feedback["fractionalScore"] == 0.0 and "feedbackType" not in graded.feedback
+    assert "grader itself failed, not because of your code" in graded.feedback["feedback"]
+    assert "readable by other users" in graded.log            # the reason, for the staff only
+    assert "readable by other users" not in graded.feedback["feedback"]
 
 
 @pytest.mark.slow
