@@ -168,6 +168,19 @@ def test_an_upload_to_another_part_is_not_graded_and_says_where_it_belongs(cours
 
 
 @pytest.mark.slow
+@pytest.mark.sandbox
+def test_a_hostile_submission_cannot_read_the_secret_nor_forge_the_feedback(coursera, autograder, tmp_path):
+    attack = build("attacks/graded", "platform_secret", tmp_path)
+    code = (attack / "go_to_goal.py").read_text().replace("__SECRET__", str(coursera / "secret"))
+    code = code.replace("__RESULTS__/results.json", str(tmp_path / "shared" / "feedback.json"))
+    (attack / "go_to_goal.py").write_text(code.replace('"score": 100.0', '"fractionalScore": 1.0'))
+    graded = _grade(coursera, autograder, tmp_path, _loose(attack))        # _grade: no seed in the feedback
+    theta_g = next(ln for ln in graded.feedback["feedback"].splitlines() if "theta_g: the heading" in ln)
+    assert theta_g.startswith("FAILED"), "student code read the secret seed"
+    assert graded.feedback["fractionalScore"] < 1.0 and graded.feedback["feedbackType"] == "HTML"
+
+
+@pytest.mark.slow
 def test_a_secret_others_can_read_stops_grading_with_a_grader_error(coursera, autograder, tmp_path):
     secret = coursera / "secret"
     secret.chmod(0o755)
