@@ -127,25 +127,10 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None,
         result = grade_submission(secret.week, folder, seed=secret.seed, hidden=True, sandbox="auto",
                                   official=True)
     result["submission"] = "your upload"     # not the grader's temporary path
-    if isinstance(result.get("isolation_note"), str):
-        result["isolation_note"] = as_official(result["isolation_note"])
     result.setdefault("notices", []).extend(missing_note(secret.week, name, True)
                                              for name in filled if note_filled)
     result["notices"][:0] = skipped
     return result
-
-
-def as_official(note: str) -> str:
-    """The isolation note as a platform's grading says it. The sandbox words a system that lacks part of
-    the sandbox "local check only ... Official grading runs it in the full sandbox", for a student's own
-    machine; on a platform this is the official grading (Coursera gives no root, some images no bubblewrap),
-    so it says that instead of pointing at a grading that will not come."""
-    from grader.sandbox.capabilities import LOCAL_ONLY
-
-    if not note.startswith(LOCAL_ONLY + ": "):
-        return note
-    rest = note[len(LOCAL_ONLY) + 2:].replace(" Official grading runs it in the full sandbox.", "")
-    return "official grading, on a platform that does not offer the full sandbox: " + rest
 
 
 def _empty(upload: Path) -> bool:
@@ -183,5 +168,5 @@ def main(argv: list[str] | None = None) -> int:
 if __name__ == "__main__":
     raise SystemExit(main())
 
-__all__ = ["BundleBroken", "Secret", "SubmissionRefused", "as_official", "cap", "grade_upload", "lock_down",
+__all__ = ["BundleBroken", "Secret", "SubmissionRefused", "cap", "grade_upload", "lock_down",
            "read_config", "read_secret", "write_secret"]

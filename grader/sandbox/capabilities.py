@@ -6,8 +6,9 @@ plain subprocess with the limits the system offers, and every result says what w
 "local check only:". Official grading (the instructor's Linux machine) runs the full sandbox.
 
 A platform's official grading (grader.platforms.official) may run where bubblewrap cannot create its
-namespaces (a Docker container with the default capabilities): there the note starts "official grading
-without bubblewrap:" instead, says what held, and points the course staff to docs/platforms.md.
+namespaces (a Docker container with the default capabilities) or without root (Coursera): there the note
+starts "official grading, on a platform that does not offer the full sandbox:" instead, says what held,
+and points the course staff to docs/platforms.md.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ import importlib
 import sys
 
 LOCAL_ONLY = "local check only"
-OFFICIAL_NO_BWRAP = "official grading without bubblewrap"
+OFFICIAL_PARTIAL = "official grading, on a platform that does not offer the full sandbox"
 
 
 def has_module(name: str) -> bool:
@@ -57,10 +58,9 @@ def local_only_note(items: list[str]) -> str:
 def official_note(items: list[str]) -> str:
     """The sentence a platform's official result carries when `items` (from `missing`) is not empty: this
     *is* the official grading, so it says what ran, not that the full sandbox runs elsewhere."""
-    return (f"{OFFICIAL_NO_BWRAP}: this grading machine cannot run the bubblewrap sandbox, so your code "
-            f"ran in a separate process on {sys.platform} with the strongest isolation the machine allows; "
-            "missing: " + "; ".join(items) + ". This grade is official; the course staff can give the "
-            "grading machine the full sandbox (docs/platforms.md).")
+    return (f"{OFFICIAL_PARTIAL}: your code ran in a plain subprocess on {sys.platform}, with the strongest "
+            "isolation this grading machine allows; missing: " + "; ".join(items) + ". This grade is "
+            "official; the course staff can give the grading machine the full sandbox (docs/platforms.md).")
 
 
 LIMIT_NAMES = ("core dumps", "CPU time", "memory", "file size", "open files", "processes")
@@ -72,6 +72,6 @@ def with_refused_limits(note: str, refused: object) -> str:
     names = [n for n in LIMIT_NAMES if isinstance(refused, list) and n in refused]
     if not names:
         return note
-    first = OFFICIAL_NO_BWRAP if note.startswith(OFFICIAL_NO_BWRAP + ": ") else LOCAL_ONLY
+    first = OFFICIAL_PARTIAL if note.startswith(OFFICIAL_PARTIAL + ": ") else LOCAL_ONLY
     rest = note[len(first) + 2:] if note.startswith(first + ": ") else note
     return f"{first}: this system refused these kernel limits: {', '.join(names)}. {rest}"

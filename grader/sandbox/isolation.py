@@ -289,7 +289,7 @@ def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int, li
 def describe(mode: str, official: bool = False) -> str:
     """One or two sentences on what holds in `mode` on this machine, for the result and the report; it
     starts "local check only: ..." when the system lacks part of the sandbox (capabilities.missing), or
-    "official grading without bubblewrap: ..." when that system is a platform's official grading."""
+    capabilities.OFFICIAL_PARTIAL when that system is a platform's official grading."""
     if mode == BWRAP:
         return NOTES[BWRAP]
     from grader.sandbox.capabilities import local_only_note, missing, official_note

@@ -19,7 +19,7 @@ from mistakes import build
 
 from grader.platforms.official import grade_upload, read_secret, write_secret
 from grader.sandbox import isolation
-from grader.sandbox.capabilities import LOCAL_ONLY, OFFICIAL_NO_BWRAP, with_refused_limits
+from grader.sandbox.capabilities import LOCAL_ONLY, OFFICIAL_PARTIAL, with_refused_limits
 
 SEED = 918273645
 WHY = "bubblewrap cannot create a sandbox here: bwrap: No permissions to create new namespace"
@@ -50,7 +50,7 @@ def test_official_grading_without_bubblewrap_says_what_ran(tmp_path, no_namespac
     (attack / "go_to_goal.py").write_text(code)
     result = _official(tmp_path, attack)
     note = result["isolation_note"]
-    assert result["isolation"] == "subprocess" and note.startswith(OFFICIAL_NO_BWRAP + ": ")
+    assert result["isolation"] == "subprocess" and note.startswith(OFFICIAL_PARTIAL + ": ")
     assert LOCAL_ONLY not in note and "Official grading runs it in the full sandbox" not in note
     assert WHY in note and "docs/platforms.md" in note
     checks = {c["id"]: c for c in result["checks"]}
@@ -61,8 +61,8 @@ def test_official_grading_without_bubblewrap_says_what_ran(tmp_path, no_namespac
 
 
 def test_refused_limits_keep_the_official_heading():
-    note = with_refused_limits(OFFICIAL_NO_BWRAP + ": this grading machine cannot ...", ["memory", "bogus"])
-    assert note.startswith(OFFICIAL_NO_BWRAP + ": this system refused these kernel limits: memory. ")
+    note = with_refused_limits(OFFICIAL_PARTIAL + ": this grading machine cannot ...", ["memory", "bogus"])
+    assert note.startswith(OFFICIAL_PARTIAL + ": this system refused these kernel limits: memory. ")
     assert LOCAL_ONLY not in note
 
 

@@ -27,6 +27,7 @@ from mistakes import ROOT, build
 from platform_specs import gradescope_violations, prairielearn_violations
 
 from grader.grading import grade_submission
+from grader.sandbox.capabilities import OFFICIAL_PARTIAL
 
 pytestmark = [pytest.mark.slow, pytest.mark.sandbox,
               pytest.mark.skipif(bool(usable()), reason=usable() or "containers can be made")]
@@ -152,7 +153,7 @@ def test_gradescope(gradescope_image, secrets, tmp_path, kind, upload):
     if KINDS[kind]:
         assert "Isolation (bwrap)" in results["output"]
     else:
-        assert "Isolation (subprocess): official grading without bubblewrap: " in results["output"]
+        assert f"Isolation (subprocess): {OFFICIAL_PARTIAL}: " in results["output"]
         assert "Operation not permitted" in results["output"] and "local check only" not in results["output"]
     _expect(upload, results["score"], {n: t["score"] == t["max_score"] for n, t in tests.items()},
             results["output"] + json.dumps(results["tests"]))
@@ -249,7 +250,7 @@ def test_prairielearn(pl_image, secrets, tmp_path, kind, upload):
     assert _leaks(text, secrets) == [] and str(SEED) not in done.stdout   # students see all of it
     results = json.loads(text)
     assert results["gradable"], text
-    isolation = "bwrap: " if KINDS[kind] else "subprocess: official grading without bubblewrap"
+    isolation = "bwrap: " if KINDS[kind] else f"subprocess: {OFFICIAL_PARTIAL}: "
     assert f"isolation: {isolation}" in results["message"] and "local check only" not in results["message"]
     passed = {t["name"]: t["points"] == t["max_points"] for t in results["tests"]}
     _expect(upload, results["score"] * 12.5, passed, text)
