@@ -146,8 +146,9 @@ class Chart:
             out.append(f'<line x1="{ml}" x2="{w - mr}" y1="{_n(py(t))}" y2="{_n(py(t))}" stroke="#e6e9ee"/>'
                        f'<text x="{ml - 4}" y="{_n(py(t) + 3.5)}" text-anchor="end" fill="#555">'
                        f'{_label(t)}</text>')
-        for t in _ticks(x0, x1, 6):
-            out.append(f'<text x="{_n(px(t))}" y="{h - mb + 13}" text-anchor="middle" fill="#555">'
+        for t in _ticks(x0, x1, 6):  # a label centred on the right edge would stick out: ends there instead
+            x, anchor = (w - 2, "end") if px(t) + 4 * len(_label(t)) > w - 2 else (px(t), "middle")
+            out.append(f'<text x="{_n(x)}" y="{h - mb + 13}" text-anchor="{anchor}" fill="#555">'
                        f'{_label(t)}</text>')
         out.append(f'<rect x="{ml}" y="{mt}" width="{w - ml - mr}" height="{h - mt - mb}" fill="none" '
                    f'stroke="#c5cbd3"/>')
