@@ -11,7 +11,6 @@ Every label in these pictures is escaped; state names are the student's and are 
 
 from __future__ import annotations
 
-import zlib
 from collections.abc import Sequence
 from html import escape
 from typing import Any
@@ -20,9 +19,9 @@ from markupsafe import Markup
 
 from grader.report.svg import BLUE, GREEN, ORANGE, RED, Chart, Series, _finite, _n
 from grader.untrusted import printable
-from simiam.signals import WEEKS_1_TO_4, declared, from_headers, headers
+from simiam.signals import COEFFICIENTS, WEEKS_1_TO_4, declared, from_headers, headers
+from simiam.viewer.state_colours import state_color  # the replay's colours too
 
-STATE_COLORS = ("#5b8def", "#e0823d", "#43a047", "#ab47bc", "#ef5350", "#26a69a", "#8d6e63", "#546e7a")
 _SERIES = (BLUE, RED, GREEN, ORANGE, "#7a3db8", "#0f8b8d")
 _ROW, _LEFT, _NAMES = 18, 96, 12  # px per timeline row, least px for the row labels, names in the legend
 _CHAR = 7.0  # px per character of an 11 px label, generously (underscores and capitals are wide)
@@ -40,11 +39,6 @@ def declared_signals(trace: dict) -> list[dict]:
         return from_headers(raw)
     except ValueError:
         return []
-
-
-def state_color(name: str) -> str:
-    """The colour of a state (or label) name: the same name, the same colour, on every page."""
-    return STATE_COLORS[zlib.crc32(name.encode("utf-8", "replace")) % len(STATE_COLORS)]
 
 
 def signals_svg(trace: dict, names: Sequence[str], title: str | None = None) -> Markup | None:
@@ -67,7 +61,8 @@ def signals_svg(trace: dict, names: Sequence[str], title: str | None = None) -> 
         elif sig["kind"] == "flag":
             series.append(Series(name, ts, [None if v is None else float(v is True) for v in values], colour))
         elif sig["kind"] == "vector2":
-            for axis, k in (("x", 0), ("y", 1)):
+            pair = (("1", 0), ("2", 1)) if unit == COEFFICIENTS else (("x", 0), ("y", 1))  # sigma: no x, y
+            for axis, k in pair:
                 ys = [v[k] if isinstance(v, list) and len(v) == 2 and _finite(v[k]) else None for v in values]
                 series.append(Series(f"{name} {axis}", ts, ys, _SERIES[len(series) % len(_SERIES)],
                                      dash="" if k == 0 else "6 4"))

@@ -23,7 +23,8 @@ def test_a_case_and_its_error_are_two_clauses() -> None:
 def test_a_note_after_a_question_gets_no_second_full_stop() -> None:
     """"did you mean 'avoid_obstacles'?. Note:" came from joining with ". " after a question."""
     asked = "no state exists with name 'avoid_obstacle'; did you mean 'avoid_obstacles'?"
-    assert then(asked, "Note: earlier weeks are the course's") == asked + " Note: earlier weeks are the course's"
+    note = "Note: earlier weeks are the course's"
+    assert then(asked, note) == f"{asked} {note}"
     assert then("reached in 9.1 s", "Note: x") == "reached in 9.1 s. Note: x"
     assert then("it stopped.", "Note: x") == "it stopped. Note: x"
     assert then("reached", "") == "reached" and then("", "Note: x") == "Note: x"

@@ -8,7 +8,7 @@ solution per scenario check: the plots of every week, at a cost of a few seconds
 from __future__ import annotations
 
 import pytest
-from browser import chromium_context
+from browser import chromium_context, solution_trace
 
 from grader.checks import checks_for_week
 from grader.report import write_report
@@ -47,23 +47,6 @@ MEASURE = """() => {
 }"""
 
 
-def _solution_trace(week: int) -> dict:
-    from browser import DATA
-
-    from simiam.control.local_brain import LocalBrain
-    from simiam.course.loader import load_submission
-    from simiam.course.weeks import get_week
-    from simiam.signals import week_signals
-    from simiam.simulator import Simulator
-    from simiam.world import load_world
-
-    cfg = get_week(week)
-    sub = load_submission(DATA.parent.parent / "solutions" / f"week{week}", cfg)
-    sim = Simulator(load_world(cfg.world), LocalBrain(sub, cfg), spec=cfg.spec, dt=0.033, start=cfg.start,
-                    signals=week_signals(cfg))  # the week's own debug signals, as `simiam run` records
-    return sim.run(seconds=SECONDS).to_json()
-
-
 def _week_result(week: int) -> tuple[dict, dict]:
     """A graded result of `week` with every visible check passed, and a solution run per scenario check."""
     checks, traces, trace = [], {}, None
@@ -75,7 +58,7 @@ def _week_result(week: int) -> tuple[dict, dict]:
                        "message": "", "details": {}, "plots": list(check.plots) if check.kind == "scenario"
                        else []})
         if check.kind == "scenario":
-            trace = trace or _solution_trace(week)
+            trace = trace or solution_trace(week, SECONDS)
             traces[check.id] = trace
     total = sum(c["points"] for c in checks)
     result = {"week": week, "score": total, "max_score": total,

@@ -17,15 +17,17 @@
     goal: "#1a7f37", obstacle: "#9aa3ae", obstacleEdge: "#5b6573", grid: "#eef0f3", crash: "#d1242f",
     series: ["#1f4fd1", "#d1242f", "#1a7f37", "#b35900", "#7a3db8", "#0f8b8d"],
     overlay: ["#d1242f", "#1a7f37", "#b35900", "#7a3db8", "#0f8b8d", "#c2185b", "#5d4037"],
-    states: ["#5b8def", "#e0823d", "#43a047", "#ab47bc", "#ef5350", "#26a69a", "#8d6e63", "#546e7a"]
+    unnamed: "#8a8f98"
   };
 
   // ---------- the debug signals the trace declares: vectors, points and headings are toggled overlays ----------
   var OVERLAYS = [];
   (function () {
-    var hasVector = SIGS.some(function (g) { return g.kind === "vector2"; }), colour = 0;
+    var hasVector = SIGS.some(function (g) { return g.kind === "vector2" && g.unit !== "coefficients"; }), colour = 0;
     SIGS.forEach(function (g) {
-      if (g.kind === "vector2" || g.kind === "points" || (g.kind === "scalar" && g.unit === "rad")) {
+      // two coefficients (unit "coefficients": week 7's sigma) are no vector in the world: plotted, not drawn
+      var world = g.kind === "vector2" && g.unit !== "coefficients";
+      if (world || g.kind === "points" || (g.kind === "scalar" && g.unit === "rad")) {
         var heading = g.kind === "scalar";
         OVERLAYS.push({ name: g.name, kind: g.kind, data: SD[g.name],
                         color: g.kind === "points" ? COLORS.cross : COLORS.overlay[colour++ % COLORS.overlay.length],
@@ -145,8 +147,14 @@
     for (var x = x0; x <= x1; x += step) { ctx.moveTo(sx(x), 0); ctx.lineTo(sx(x), st.H); }
     for (var y = y0; y <= y1; y += step) { ctx.moveTo(0, sy(y)); ctx.lineTo(st.W, sy(y)); }
     ctx.stroke();
-    // scale bar, bottom right
+    // scale bar, bottom right; lifted above the legend where the legend (wrapped on a narrow page) reaches it
     var len = step * st.zoom, bx = st.W - 16 - len, by = st.H - 14;
+    var legend = document.getElementById("legend");
+    if (legend) {
+      var cr = canvas.getBoundingClientRect(), lr = legend.getBoundingClientRect();
+      if (lr.width > 0 && lr.right - cr.left > bx - 24) { by = Math.min(by, lr.top - cr.top - 8); }
+    }
+    st.scaleBar = [bx - 20, by - 18, len + 40, 24];   // its box (label included), in canvas pixels
     ctx.strokeStyle = "#3a4450"; ctx.lineWidth = 2; ctx.beginPath();
     ctx.moveTo(bx, by); ctx.lineTo(bx + len, by); ctx.moveTo(bx, by - 4); ctx.lineTo(bx, by + 4);
     ctx.moveTo(bx + len, by - 4); ctx.lineTo(bx + len, by + 4); ctx.stroke();
@@ -387,10 +395,8 @@
   function fmtNum(v) { var a = Math.abs(v); return a >= 10 ? v.toFixed(0) : a >= 1 ? v.toFixed(1) : v.toFixed(2); }
 
   var plots = [];
-  function stateColor(name) {        // the same state name gets the same colour on every page
-    var h = 0;
-    for (var k = 0; k < name.length; k++) { h = (h * 31 + name.charCodeAt(k)) % 1000003; }
-    return COLORS.states[h % COLORS.states.length];
+  function stateColor(name) {        // the report's colour of the name (simiam.viewer.state_colours), sent in the data
+    return (D.state_colors || {})[name] || COLORS.unnamed;
   }
   (function buildPlots() {
     // the state timeline (which controller ran when), then one row per label signal and per event
@@ -424,13 +430,18 @@
     // every other number the run declared: one plot per unit (counts on their own)
     var byUnit = {}, units = [];
     SIGS.forEach(function (g) {
-      if (!((g.kind === "scalar" && g.unit !== "rad") || g.kind === "count")) { return; }
+      var pair = g.kind === "vector2" && g.unit === "coefficients";
+      if (!((g.kind === "scalar" && g.unit !== "rad") || g.kind === "count" || pair)) { return; }
       var unit = g.kind === "count" ? "count" : (g.unit || "");
       if (!byUnit[unit]) { byUnit[unit] = []; units.push(unit); }
       byUnit[unit].push(g.name);
     });
     units.forEach(function (unit) {
-      var series = byUnit[unit].map(function (name, j) { return { label: name, ys: SD[name], color: COLORS.series[j % COLORS.series.length] }; });
+      var series = [];
+      byUnit[unit].forEach(function (name) {
+        var d = SD[name], parts = d && d.x ? [[name + " 1", d.x], [name + " 2", d.y]] : [[name, d]];
+        parts.forEach(function (p) { series.push({ label: p[0], ys: p[1], color: COLORS.series[series.length % COLORS.series.length] }); });
+      });
       plots.push(Plot(byUnit[unit].join(", ") + (unit ? " (" + unit + ")" : ""), series));
     });
   })();
@@ -615,7 +626,8 @@
       return { t: st.t, index: st.index, playing: st.playing, speed: st.speed, zoom: st.zoom,
                center: [st.cx, st.cy], following: st.following, tEnd: TEND, rows: N,
                robotScreenXY: [r.left + sx(q[0]), r.top + sy(q[1])],
-               canvasRect: [r.left, r.top, r.width, r.height], collisionLabel: st.crashLabel || null };
+               canvasRect: [r.left, r.top, r.width, r.height], collisionLabel: st.crashLabel || null,
+               scaleBar: st.scaleBar || null };
     },
     play: function () { setPlaying(true); }, pause: function () { setPlaying(false); },
     seek: seek, stepBy: stepBy, home: function () { home(); render(); },

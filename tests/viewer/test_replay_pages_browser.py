@@ -1,0 +1,68 @@
+"""The replay of every week at 1024 and 1280 px in headless Chromium, measured as a person sees it: the
+legend never covers the scale bar, no plot title is cut, nothing needs sideways scrolling; week 7's sigma
+(two coefficients) is plotted, not drawn as an arrow out of the arena; and every state has the colour
+the report gives it.
+
+One short run of the course's solution per week, written once for the module."""
+
+from __future__ import annotations
+
+import pytest
+from browser import chromium_context, solution_trace
+
+from grader.report.signal_plots import state_color
+from simiam.viewer.replay import write_replay
+
+pytestmark = pytest.mark.browser
+WIDTHS = (1024, 1280)
+SECONDS = {7: 30.0}  # week 7 slides along the wall (sigma gets values) after ~20 s; 12 s shows the rest
+
+MEASURE = """() => {
+  const s = window.simiam.state(), [cl, ct] = s.canvasRect, legend = document.getElementById('legend');
+  const l = legend.getBoundingClientRect(), stage = document.getElementById('stage').getBoundingClientRect();
+  const [bx, by, bw, bh] = s.scaleBar;
+  const bar = {left: cl + bx, top: ct + by, right: cl + bx + bw, bottom: ct + by + bh};
+  const meets = Math.min(l.right, bar.right) > Math.max(l.left, bar.left) &&
+                Math.min(l.bottom, bar.bottom) > Math.max(l.top, bar.top);
+  const cut = [...document.querySelectorAll('.plot h2')].filter(h => h.scrollWidth > h.clientWidth + 1)
+                .map(h => h.textContent);
+  return {meets, cut, scroll: [document.documentElement.scrollWidth, innerWidth],
+          legendInStage: l.left >= stage.left && l.right <= stage.right + 1 && l.bottom <= stage.bottom + 1,
+          titles: [...document.querySelectorAll('.plot h2')].map(h => h.textContent),
+          overlays: window.simiam.overlays().map(o => o.name)};
+}"""
+
+
+@pytest.fixture(scope="module")
+def replays(tmp_path_factory) -> dict[int, tuple[str, dict]]:
+    out = tmp_path_factory.mktemp("replays")
+    pages = {}
+    for week in range(1, 8):
+        trace = solution_trace(week, SECONDS.get(week, 12.0))
+        pages[week] = (write_replay(trace, out / f"week{week}.html").resolve().as_uri(), trace)
+    return pages
+
+
+@pytest.mark.parametrize("width", WIDTHS)
+def test_every_weeks_replay_reads_whole(replays: dict, width: int, tmp_path) -> None:
+    seen, colours = {}, {}
+    for context in chromium_context({"width": width, "height": 760}):
+        page = context.new_page()
+        for week, (uri, trace) in replays.items():
+            page.goto(uri)
+            page.wait_for_selector("body[data-ready='1']", state="attached", timeout=10_000)
+            page.evaluate("window.simiam.home()")
+            seen[week] = page.evaluate(MEASURE)
+            names = sorted({s for s in trace["steps"]["state"] if s})
+            colours[week] = {n: page.evaluate("(n) => window.simiam.stateColor(n)", n) for n in names}
+            page.screenshot(path=str(tmp_path / f"replay-week{week}-{width}.png"))
+    assert {w: m for w, m in seen.items() if m["meets"]} == {}  # the legend wrapped over the scale bar
+    assert {w: m["cut"] for w, m in seen.items() if m["cut"]} == {}
+    assert {w: m["scroll"] for w, m in seen.items() if m["scroll"][0] > m["scroll"][1]} == {}
+    assert all(m["legendInStage"] for m in seen.values())
+    # week 7's sigmas: two coefficients each, plotted over time, not arrows from the robot
+    assert not {"sigma_left", "sigma_right"} & set(seen[7]["overlays"]) and "u_gtg" in seen[7]["overlays"]
+    assert any("sigma_left" in title and "coefficients" in title for title in seen[7]["titles"])
+    # the report's colour of every state, on the replay's timeline
+    assert all(colours[w] for w in (5, 6, 7))
+    assert {w: c for w, c in colours.items() if c != {n: state_color(n) for n in c}} == {}
