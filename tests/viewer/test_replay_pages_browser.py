@@ -15,9 +15,16 @@ from simiam.viewer.replay import write_replay
 
 pytestmark = pytest.mark.browser
 WIDTHS = (1024, 1280)
-SECONDS = {7: 30.0}  # week 7 slides along the wall (sigma gets values) after ~20 s; 12 s shows the rest
+# week 5's full 60 s (it stops at its goal after ~9 s); week 7 slides along the wall (sigma gets values)
+# after ~20 s; 12 s shows the rest
+SECONDS = {5: 60.0, 7: 30.0}
 
 MEASURE = """() => {
+  const widest = () => {  // the widest row label of the state timeline, measured here in the page's font
+    const g = document.createElement('canvas').getContext('2d'); g.font = '10px system-ui, sans-serif';
+    const rows = ['state', ...window.simiam.signalRows()];
+    return Math.max(...rows.map(r => g.measureText(r).width));
+  };
   const s = window.simiam.state(), [cl, ct] = s.canvasRect, legend = document.getElementById('legend');
   const l = legend.getBoundingClientRect(), stage = document.getElementById('stage').getBoundingClientRect();
   const [bx, by, bw, bh] = s.scaleBar;
@@ -29,7 +36,8 @@ MEASURE = """() => {
   return {meets, cut, scroll: [document.documentElement.scrollWidth, innerWidth],
           legendInStage: l.left >= stage.left && l.right <= stage.right + 1 && l.bottom <= stage.bottom + 1,
           titles: [...document.querySelectorAll('.plot h2')].map(h => h.textContent),
-          overlays: window.simiam.overlays().map(o => o.name)};
+          overlays: window.simiam.overlays().map(o => o.name), plotEnd: s.plotEnd, tEnd: s.tEnd,
+          margins: s.labelMargins, widest: widest()};
 }"""
 
 
@@ -60,6 +68,11 @@ def test_every_weeks_replay_reads_whole(replays: dict, width: int, tmp_path) -> 
     assert {w: m["cut"] for w, m in seen.items() if m["cut"]} == {}
     assert {w: m["scroll"] for w, m in seen.items() if m["scroll"][0] > m["scroll"][1]} == {}
     assert all(m["legendInStage"] for m in seen.values())
+    # the timeline's row labels fit their margin, measured from the labels (it was a fixed 92 px)
+    assert max(seen[7]["margins"]) >= seen[7]["widest"] + 4
+    # a 60 s run that stopped at its goal after ~9 s: the plots end soon after, not at 60 s
+    assert seen[5]["tEnd"] > 59 and seen[5]["plotEnd"] < 15
+    assert any(seen[w]["plotEnd"] == seen[w]["tEnd"] for w in (1, 3, 7))  # a run that moves to the end
     # week 7's sigmas: two coefficients each, plotted over time, not arrows from the robot
     assert not {"sigma_left", "sigma_right"} & set(seen[7]["overlays"]) and "u_gtg" in seen[7]["overlays"]
     assert any("sigma_left" in title and "coefficients" in title for title in seen[7]["titles"])

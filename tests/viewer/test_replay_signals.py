@@ -58,8 +58,9 @@ def timeline_painted(page) -> bool:
     page.evaluate("window.simiam.seek(2.9)")  # the time cursor away from the samples
     colours = page.evaluate("""() => {
         const c = document.querySelector('.plot.timeline canvas'), g = c.getContext('2d');
-        const w = c.getBoundingClientRect().width, tEnd = window.simiam.state().tEnd;
-        const at = t => Array.from(g.getImageData(Math.round(92 + t / tEnd * (w - 96)), 5, 1, 1).data);
+        const w = c.getBoundingClientRect().width, s = window.simiam.state(), tEnd = s.plotEnd;
+        const ml = s.labelMargins[0];  // the timeline is the first plot; its margin fits its row labels
+        const at = t => Array.from(g.getImageData(Math.round(ml + t / tEnd * (w - ml - 4)), 5, 1, 1).data);
         const hex = s => [1, 3, 5].map(k => parseInt(s.slice(k, k + 2), 16));
         return [at(0.5), hex(window.simiam.stateColor('go_to_goal')),
                 at(1.5), hex(window.simiam.stateColor('follow_wall'))];

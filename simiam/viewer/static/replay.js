@@ -10,6 +10,17 @@
   var SIGS = D.signals || [], SD = D.signal_data || {};   // the run's declared debug signals, by name
   var N = S.t.length;
   var T0 = S.t[0], TEND = S.t[N - 1];
+  // A run that stops for good long before its end (week 5 at its goal after 9 s of a 60 s run): the plots
+  // end a little after the robot last moved, instead of squeezing the run into the first sixth of the axis.
+  var TPLOT = (function () {
+    var k = N - 1, eps = 1e-6;
+    while (k > 0 && Math.abs(S.x[k] - S.x[k - 1]) < eps && Math.abs(S.y[k] - S.y[k - 1]) < eps &&
+           Math.abs(S.theta[k] - S.theta[k - 1]) < eps) { k--; }
+    var last = D.states.length ? D.states[D.states.length - 1][0] : 0;   // nor did its state change since
+    var still = S.t[Math.max(k, last)];
+    if (still <= T0) { return TEND; }        // a robot that never moved: nothing to zoom on
+    return TEND - still > 0.25 * (TEND - T0) ? Math.min(TEND, still + Math.max(1, 0.1 * (still - T0))) : TEND;
+  })();
 
   var COLORS = {
     body: "#3d6fb6", bodyEdge: "#16325c", ghost: "rgba(120,120,130,0.55)", trail: "#3d6fb6",
@@ -292,6 +303,7 @@
   }
 
   // ---------- plots linked to the time cursor ----------
+  var LABEL_FONT = "10px system-ui, sans-serif";
   function wrap(a) { return a === null || a === undefined ? null : Math.atan2(Math.sin(a), Math.cos(a)); }
   function Plot(title, series, fixed, rows) {
     var box = document.createElement("div"), h = document.createElement("h2"), c = document.createElement("canvas");
@@ -312,12 +324,17 @@
     var pad = 0.06 * (hi - lo); lo -= pad; hi += pad;
     var self = { canvas: c, w: 1, h: 1, back: null };
     var ML = 38, MR = 4, MT = 4, MB = 14;
-    function px(t) { return ML + (t - T0) / Math.max(TEND - T0, 1e-9) * (self.w - ML - MR); }
+    function px(t) { return ML + (Math.min(t, TPLOT) - T0) / Math.max(TPLOT - T0, 1e-9) * (self.w - ML - MR); }
     function py(v) { return MT + (hi - v) / (hi - lo) * (self.h - MT - MB); }
-    if (rows) { ML = 92; c.style.height = (MT + MB + 16 * rows.length) + "px"; }
+    if (rows) {   // the row labels' margin fits the widest label ("obstacle_cleared" lost its "o" at 92 px)
+      var m = document.createElement("canvas").getContext("2d"); m.font = LABEL_FONT;
+      ML = 8 + Math.ceil(Math.max.apply(null, rows.map(function (row) { return m.measureText(rowLabel(row)).width; })));
+      c.style.height = (MT + MB + 16 * rows.length) + "px";
+    }
+    self.labelMargin = ML;
     self.tAt = function (clientX) {
       var r = c.getBoundingClientRect();
-      return T0 + (clientX - r.left - ML) / (self.w - ML - MR) * (TEND - T0);
+      return T0 + (clientX - r.left - ML) / (self.w - ML - MR) * (TPLOT - T0);
     };
     self.resize = function () {
       var r = c.getBoundingClientRect(), dpr = window.devicePixelRatio || 1;
@@ -326,18 +343,19 @@
       // draw the lines once into an offscreen canvas; each frame only blits it and adds the cursor
       var b = document.createElement("canvas"); b.width = c.width; b.height = c.height;
       var g = b.getContext("2d"); g.setTransform(dpr, 0, 0, dpr, 0, 0);
-      g.font = "10px system-ui, sans-serif"; g.fillStyle = "#5b6573"; g.strokeStyle = "#e3e7ec"; g.lineWidth = 1;
+      g.font = LABEL_FONT; g.fillStyle = "#5b6573"; g.strokeStyle = "#e3e7ec"; g.lineWidth = 1;
       if (rows) { paintRows(g, rows, px, ML, MT); }
       (rows ? [] : [lo + pad, (lo + hi) / 2, hi - pad]).forEach(function (v) {
         g.beginPath(); g.moveTo(ML, py(v)); g.lineTo(self.w - MR, py(v)); g.stroke();
         g.fillText(fmtNum(v), 1, py(v) + 3);
       });
       g.fillText(T0.toFixed(0) + " s", ML, self.h - 2);
-      g.textAlign = "right"; g.fillText(TEND.toFixed(1) + " s", self.w - MR, self.h - 2); g.textAlign = "left";
+      var end = TPLOT < TEND ? TPLOT.toFixed(1) + " s (still until " + TEND.toFixed(0) + " s)" : TEND.toFixed(1) + " s";
+      g.textAlign = "right"; g.fillText(end, self.w - MR, self.h - 2); g.textAlign = "left";
       series.forEach(function (s) {
         g.strokeStyle = s.color; g.lineWidth = s.width || 1.3; g.setLineDash(s.dash || []); g.beginPath();
         var on = false;
-        for (var k = 0; k < N; k++) {
+        for (var k = 0; k < N && S.t[k] <= TPLOT; k++) {
           var v = s.ys[k];
           if (v === null || !isFinite(v)) { on = false; continue; }
           if (s.breakOnWrap && on && k > 0 && s.ys[k - 1] !== null && Math.abs(v - s.ys[k - 1]) > Math.PI) { on = false; }
@@ -373,10 +391,11 @@
   }
   // A timeline: a band per row, coloured per state or label value; an event row is marked where it is true.
   function Timeline(title, rows) { return Plot(title, [], null, rows); }
+  function rowLabel(row) { return visible(row.label).slice(0, 24); }
   function paintRows(g, rows, px, ML, MT) {
     rows.forEach(function (row, r) {
       var y = MT + 16 * r;
-      g.fillStyle = "#3a4450"; g.textAlign = "right"; g.fillText(visible(row.label).slice(0, 16), ML - 4, y + 11); g.textAlign = "left";
+      g.fillStyle = "#3a4450"; g.textAlign = "right"; g.fillText(rowLabel(row), ML - 4, y + 11); g.textAlign = "left";
       if (row.runs) {
         row.runs.forEach(function (run, j) {
           var k0 = run[0], k1 = j + 1 < row.runs.length ? row.runs[j + 1][0] : N - 1;
@@ -627,7 +646,8 @@
                center: [st.cx, st.cy], following: st.following, tEnd: TEND, rows: N,
                robotScreenXY: [r.left + sx(q[0]), r.top + sy(q[1])],
                canvasRect: [r.left, r.top, r.width, r.height], collisionLabel: st.crashLabel || null,
-               scaleBar: st.scaleBar || null };
+               scaleBar: st.scaleBar || null, plotEnd: TPLOT,
+               labelMargins: plots.map(function (p) { return p.labelMargin; }) };
     },
     play: function () { setPlaying(true); }, pause: function () { setPlaying(false); },
     seek: seek, stepBy: stepBy, home: function () { home(); render(); },
@@ -636,6 +656,7 @@
     setSpeed: function (v) { st.speed = v; speedSel.value = String(v); },
     worldToScreen: function (x, y) { var r = canvas.getBoundingClientRect(); return [r.left + sx(x), r.top + sy(y)]; },
     stateColor: stateColor,
+    signalRows: function () { return SIGS.filter(function (g) { return g.kind === "label" || g.kind === "flag"; }).map(function (g) { return g.name; }); },
     overlays: function () { return OVERLAYS.map(function (o) { return { name: o.name, kind: o.kind, on: o.on }; }); },
     setOverlay: function (name, on) {
       OVERLAYS.forEach(function (o, j) {
