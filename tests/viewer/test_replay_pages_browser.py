@@ -7,6 +7,9 @@ One short run of the course's solution per week, written once for the module."""
 
 from __future__ import annotations
 
+import re
+from pathlib import Path
+
 import pytest
 from browser import chromium_context, solution_trace
 
@@ -15,6 +18,12 @@ from simiam.viewer.replay import write_replay
 
 pytestmark = pytest.mark.browser
 WIDTHS = (1024, 1280)
+ASSIGNMENTS = Path(__file__).resolve().parents[2] / "assignments"
+# the colour words a handout README may use for what the replay draws, and the colours they name
+COLOUR_WORDS = {"red": "#d1242f", "green": "#1a7f37", "orange": "#b35900", "purple": "#7a3db8",
+                "teal": "#0f8b8d", "pink": "#c2185b", "brown": "#5d4037", "black": "#111", "blue": "#1f4fd1"}
+# "`u_ao` (the red arrow", "your `u_ao` (a green arrow", "`ir_distances_wf` (black crosses)"
+SAYS_COLOUR = re.compile(r"`(\w+)` \((?:the |an? )?(\w+) (?:arrow|crosses|cross|line)")
 # week 5's full 60 s (it stops at its goal after ~9 s); week 7 slides along the wall (sigma gets values)
 # after ~20 s; 12 s shows the rest
 SECONDS = {5: 60.0, 7: 30.0}
@@ -79,3 +88,22 @@ def test_every_weeks_replay_reads_whole(replays: dict, width: int, tmp_path) -> 
     # the report's colour of every state, on the replay's timeline
     assert all(colours[w] for w in (5, 6, 7))
     assert {w: c for w, c in colours.items() if c != {n: state_color(n) for n in c}} == {}
+
+
+def test_the_handouts_name_the_colours_the_replay_draws(replays: dict) -> None:
+    """The week-5 README called u_ao "the red arrow" while the replay draws it green: every colour a
+    handout README gives a drawn signal is the colour its week's replay gives it."""
+    drawn, said = {}, []
+    for context in chromium_context({"width": 1024, "height": 760}):
+        page = context.new_page()
+        for week, (uri, _) in replays.items():
+            page.goto(uri)
+            page.wait_for_selector("body[data-ready='1']", state="attached", timeout=10_000)
+            drawn[week] = {o["name"]: o["color"] for o in page.evaluate("window.simiam.overlays()")}
+    for week in drawn:
+        text = " ".join((ASSIGNMENTS / f"week{week}" / "README.md").read_text(encoding="utf-8").split())
+        for name, word in SAYS_COLOUR.findall(text):
+            name = "ir_points_wf" if name == "ir_distances_wf" else name  # the signal its points come from
+            said.append((week, name, word, drawn[week].get(name)))
+    assert {(4, "u_ao"), (5, "u_ao"), (4, "ir_points_wf")} <= {(w, n) for w, n, _, _ in said}
+    assert [s for s in said if COLOUR_WORDS.get(s[2]) != s[3]] == []

@@ -71,7 +71,7 @@ def timeline_painted(page) -> bool:
 def test_overlays_timeline_and_plots(open_page, week5_like, tmp_path):
     page, errors = open_page(write_replay(week5_like, tmp_path / "week5.html"))
     page.evaluate("window.simiam.seek(1.5)")
-    assert page.evaluate("window.simiam.overlays()") == [
+    assert [{k: o[k] for k in ("name", "kind", "on")} for o in page.evaluate("window.simiam.overlays()")] == [
         {"name": "theta_g", "kind": "scalar", "on": False},  # a heading, off where vectors are drawn
         {"name": "u_gtg", "kind": "vector2", "on": True}, {"name": "u_ao", "kind": "vector2", "on": True}]
     titles = page.locator(".plot h2").all_inner_texts()

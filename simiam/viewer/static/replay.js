@@ -657,7 +657,7 @@
     worldToScreen: function (x, y) { var r = canvas.getBoundingClientRect(); return [r.left + sx(x), r.top + sy(y)]; },
     stateColor: stateColor,
     signalRows: function () { return SIGS.filter(function (g) { return g.kind === "label" || g.kind === "flag"; }).map(function (g) { return g.name; }); },
-    overlays: function () { return OVERLAYS.map(function (o) { return { name: o.name, kind: o.kind, on: o.on }; }); },
+    overlays: function () { return OVERLAYS.map(function (o) { return { name: o.name, kind: o.kind, on: o.on, color: o.color }; }); },
     setOverlay: function (name, on) {
       OVERLAYS.forEach(function (o, j) {
         if (o.name === name) { o.on = on; document.querySelector("#legend input[data-overlay=\"" + j + "\"]").checked = on; }
