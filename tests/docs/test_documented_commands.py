@@ -150,3 +150,29 @@ def test_the_suite_figures_are_quoted_in_one_place() -> None:
               for p in doc_files()}
     assert {p: n for p, n in quoted.items() if n} == {"README.md": 1}
     assert "the README's table" in (ROOT / "docs" / "contributing.md").read_text(encoding="utf-8")
+
+
+def _options(parser, command: str) -> list[tuple[str, str]]:
+    """(command, --option) of `parser` and of its subcommands'."""
+    out = []
+    for action in parser._actions:
+        if isinstance(getattr(action, "choices", None), dict):
+            for name, sub in action.choices.items():
+                out += _options(sub, f"{command} {name}")
+        out += [(command, o) for o in action.option_strings if o.startswith("--") and o != "--help"]
+    return out
+
+
+def test_every_option_of_run_migrate_and_grade_is_documented() -> None:
+    """`simiam run --world` was documented only in --help: every option of `simiam run`, `simiam migrate`
+    and `grade` appears in a paragraph or block of the docs that names its command."""
+    from grader.cli import _parser as grade_parser
+    from simiam.cli import _parser as simiam_parser
+
+    paragraphs = [p for path in doc_files() for p in re.split(r"\n\s*\n", path.read_text(encoding="utf-8"))]
+    wanted = [(c, o) for c, o in _options(simiam_parser(), "simiam") + _options(grade_parser(), "grade")
+              if c in ("simiam run", "simiam migrate", "grade")]
+    assert ("simiam run", "--world") in wanted and len(wanted) > 20
+    missing = [(c, o) for c, o in wanted
+               if not any(c in p and re.search(re.escape(o) + r"\b", p) for p in paragraphs)]
+    assert missing == []
