@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import os
 import re
+import shutil
 import subprocess
 import sys
 from dataclasses import dataclass
@@ -167,9 +168,21 @@ def run(text: str, cwd: Path, env: dict[str, str], marker: Path, timeout: float 
     return Ran(done.returncode, done.stdout + done.stderr, where)
 
 
+def scripts() -> Path:
+    """The folder of this install's `grade` and `simiam` (beside the running python in a venv; else where
+    the shell finds them)."""
+    beside = Path(sys.executable).parent
+    if (beside / "grade").exists():
+        return beside
+    found = shutil.which("grade")
+    if found is None:
+        raise RuntimeError("the grade command is not installed (pip install -e '.[test]')")
+    return Path(found).parent
+
+
 def clean_env(home: Path) -> dict[str, str]:
     """The environment of a reader's shell: this suite's install on PATH, `~` a temporary home, and the
     machine's pip settings (its index, certificates, proxies) as a reader's shell has them."""
     env = {k: v for k, v in os.environ.items() if k.startswith("PIP_") or k.lower().endswith("_proxy")}
-    return {**env, "PATH": f"{Path(sys.executable).parent}:/usr/bin:/bin", "HOME": str(home),
+    return {**env, "PATH": f"{scripts()}:/usr/bin:/bin", "HOME": str(home),
             "LANG": "C.UTF-8", "TERM": "dumb", "COLUMNS": "100"}
