@@ -9,6 +9,7 @@ plain subprocess with the limits the system offers, and every result says what w
 from __future__ import annotations
 
 import importlib
+import os
 import sys
 
 LOCAL_ONLY = "local check only"
@@ -21,6 +22,12 @@ def has_module(name: str) -> bool:
     except ImportError:
         return False
     return True
+
+
+def is_root() -> bool:
+    """True if this process runs as root (False where the system has no uids: Windows)."""
+    geteuid = getattr(os, "geteuid", None)
+    return geteuid is not None and geteuid() == 0
 
 
 def missing(bwrap_ok: bool, bwrap_why: str = "") -> list[str]:
