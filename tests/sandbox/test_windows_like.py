@@ -1,0 +1,141 @@
+"""Issue 23: `grade` on a system with none of the POSIX-only pieces (Windows), emulated on Linux.
+
+No Windows machine is available, so the grading process and every worker run under
+tests/data/windows_like/no_posix.py, which removes what Windows lacks before anything is imported: fcntl,
+resource, termios, pwd; select.poll/epoll; os.fork, setsid, killpg, uids; the signals Windows lacks; /proc
+(for Python code); seccomp. PATH holds no bubblewrap, only an emulated `taskkill` (tests/data/windows_like/
+taskkill) that logs each call. The week-3 solution then scores full marks and the stub 0 through the
+portable channel (grader.sandbox.channel); an endless loop times out, and a child process started by the
+submission is gone when `grade` returns, killed by the `taskkill /T` path.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import stat
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from mistakes import build
+
+import grader
+
+REPO = Path(__file__).resolve().parents[2]
+DATA = REPO / "tests" / "data" / "windows_like"
+SHIM = DATA / "no_posix.py"
+
+
+@pytest.fixture
+def windows_like(tmp_path: Path):
+    """grade(*args) -> (CompletedProcess, result JSON or None) in the emulated Windows."""
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    # taskkill on PATH, run by this interpreter (the emulation hides nothing from it: it plays Windows)
+    taskkill = bin_dir / "taskkill"
+    taskkill.write_text(f"#!{sys.executable}\n" + (DATA / "taskkill").read_text())
+    # the interpreter the workers are started with: the real one, through the emulation
+    launcher = bin_dir / "python-windows-like"
+    launcher.write_text(f'#!/bin/sh\nexec "{sys.executable}" -I -S -B "{SHIM}" worker "$@"\n')
+    for script in (taskkill, launcher):
+        script.chmod(script.stat().st_mode | stat.S_IXUSR | stat.S_IXGRP | stat.S_IXOTH)
+    log = tmp_path / "taskkill.log"
+    env = {"PATH": str(bin_dir), "HOME": str(tmp_path), "LANG": "C.UTF-8", "TASKKILL_LOG": str(log),
+           "PYTHONPATH": str(Path(grader.__file__).resolve().parents[1]),
+           "SIMIAM_CACHE_DIR": str(tmp_path / "cache")}
+
+    def grade(week: str, folder: Path, *args: str) -> tuple[subprocess.CompletedProcess, dict | None]:
+        out = tmp_path / f"out-{folder.name}"
+        report = out / "result.json"
+        done = subprocess.run([sys.executable, str(SHIM), "grade", str(launcher), week, str(folder),
+                               "--out", str(out), "--json", str(report), *args], capture_output=True,
+                              text=True, env=env, cwd=tmp_path, timeout=600)
+        return done, json.loads(report.read_text()) if report.exists() else None
+
+    grade.taskkill_log = log  # type: ignore[attr-defined]
+    return grade
+
+
+def test_the_emulation_really_removes_the_posix_pieces(tmp_path: Path) -> None:
+    """The emulation is what the other tests rest on: check it removes what it claims, in a worker too."""
+    probe = (
+        "import os, select, signal, sys, platform\n"
+        "from grader.inside.seccomp import available\n"
+        "missing = [n for n in ('fcntl', 'resource', 'termios') if sys.modules.get(n, 0) is not None]\n"
+        "attrs = [n for n, m in (('poll', select), ('setsid', os), ('killpg', os), ('fork', os),"
+        " ('geteuid', os), ('SIGUSR1', signal), ('SIGXCPU', signal), ('setitimer', signal)) if hasattr(m, n)]\n"
+        "try:\n    open('/proc/self/status')\n    proc = 'readable'\nexcept FileNotFoundError:\n    proc = 'gone'\n"
+        "print(missing, attrs, proc, available())\n")
+    script = tmp_path / "probe.py"
+    script.write_text(probe)
+    env = {"PATH": "/usr/bin:/bin", "PYTHONPATH": str(Path(grader.__file__).resolve().parents[1])}
+    done = subprocess.run([sys.executable, str(SHIM), "worker", "-I", str(script)], capture_output=True,
+                          text=True, env=env, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split("\n")[0] == "[] [] gone False"
+
+
+def test_the_solution_scores_full_marks_through_the_portable_channel(windows_like) -> None:
+    done, result = windows_like("week3", REPO / "solutions" / "week3")
+    assert done.returncode == 0, done.stderr + done.stdout
+    assert result is not None and result["status"] == "graded"
+    assert result["score"] == result["max_score"] > 0
+    assert result["isolation"] == "subprocess"
+    note = result["isolation_note"]
+    assert note.startswith("local check only: ")
+    assert "resource module is missing" in note and "no seccomp" in note and "fcntl" in note
+    assert "local check only:" in done.stdout
+
+
+def test_the_stub_scores_zero_there(windows_like) -> None:
+    done, result = windows_like("week3", REPO / "assignments" / "week3")
+    assert done.returncode == 1, done.stderr + done.stdout
+    assert result is not None and result["score"] == 0 < result["max_score"]
+    assert "local check only:" in done.stdout
+
+
+def test_an_endless_loop_times_out_and_its_worker_is_killed(windows_like, tmp_path: Path) -> None:
+    folder = build("windows_like", "endless_loop", tmp_path / "subs")
+    done, result = windows_like("week3", folder, "--check", "week3.go_to_goal.reach_goals")
+    assert done.returncode == 1, done.stderr + done.stdout
+    assert result is not None and result["score"] == 0
+    text = json.dumps(result)
+    assert "time limit per call" in text
+    # the timed-out worker was ended through taskkill /T (no process groups here)
+    assert windows_like.taskkill_log.read_text().strip()
+
+
+def test_a_child_process_of_the_submission_is_gone_when_grade_returns(windows_like, tmp_path: Path) -> None:
+    folder = build("windows_like", "child_process", tmp_path / "subs")
+    pid_file = tmp_path / "child.pid"
+    source = folder / "go_to_goal.py"
+    source.write_text(source.read_text().replace("CHILD_PID_FILE", str(pid_file)))
+    done, result = windows_like("week3", folder, "--check", "week3.pid.proportional")
+    assert result is not None, done.stderr + done.stdout
+    children = [int(line) for line in pid_file.read_text().split()]
+    try:
+        assert children  # the submission did start its child processes
+        killed = {int(pid) for line in windows_like.taskkill_log.read_text().splitlines()
+                  for pid in line.split()[1:]}
+        assert set(children) <= killed  # taskkill /T reached them through the worker's tree
+        for pid in children:
+            assert not _alive(pid), f"the submission's child {pid} outlived grade"
+    finally:  # a wrong version leaves them: do not leave them sleeping on the machine
+        for pid in children:
+            if _alive(pid):
+                os.kill(pid, 9)
+
+
+def _alive(pid: int) -> bool:
+    """True if `pid` runs (a zombie waiting for a parent that does not reap is not running)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    try:
+        state = Path(f"/proc/{pid}/stat").read_bytes().rsplit(b")", 1)[1].split()[0]
+    except (OSError, IndexError):
+        return False
+    return state not in (b"Z", b"X")
