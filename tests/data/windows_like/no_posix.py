@@ -50,7 +50,7 @@ for name in dir(signal):
     if name.startswith("SIG") and not name.startswith(("SIG_", "SIGRT")) and name not in WINDOWS_SIGNALS:
         delattr(signal, name)
 for name in ("alarm", "setitimer", "getitimer", "pause", "pthread_kill", "pthread_sigmask", "sigpending",
-             "sigwait", "siginterrupt", "ITIMER_REAL", "ITIMER_VIRTUAL", "ITIMER_PROF", "SIGRTMIN", "SIGRTMAX"):
+             "sigwait", "siginterrupt", "ITIMER_REAL", "ITIMER_VIRTUAL", "ITIMER_PROF"):
     if hasattr(signal, name):
         delattr(signal, name)
 
