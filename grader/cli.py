@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -154,11 +153,6 @@ def main(argv: list[str] | None = None) -> int:
         return platforms_main(argv)
     parser = _parser()
     args = parser.parse_args(argv)
-    if os.name == "nt":
-        # The worker channel needs POSIX pipes passed by descriptor, poll() and process groups.
-        print("grade: Windows is not supported yet; run grade inside WSL (Windows Subsystem for Linux), "
-              "where it works as on Linux", file=sys.stderr)
-        return 2
     try:
         weeks = list(week_numbers()) if args.week.lower() == "all" else [_week(args.week)]
         if args.case and not args.check:

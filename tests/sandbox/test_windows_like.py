@@ -13,48 +13,34 @@ from __future__ import annotations
 
 import json
 import os
-import stat
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 from mistakes import build
+from windows_like import DATA, GRADE, SHIM, WindowsLike
 
 import grader
 
 REPO = Path(__file__).resolve().parents[2]
-DATA = REPO / "tests" / "data" / "windows_like"
-SHIM = DATA / "no_posix.py"
 
 
 @pytest.fixture
-def windows_like(tmp_path: Path):
-    """grade(*args) -> (CompletedProcess, result JSON or None) in the emulated Windows."""
-    bin_dir = tmp_path / "bin"
-    bin_dir.mkdir()
-    # taskkill on PATH, run by this interpreter (the emulation hides nothing from it: it plays Windows)
-    taskkill = bin_dir / "taskkill"
-    taskkill.write_text(f"#!{sys.executable}\n" + (DATA / "taskkill").read_text())
-    # the interpreter the workers are started with: the real one, through the emulation
-    launcher = bin_dir / "python-windows-like"
-    launcher.write_text(f'#!/bin/sh\nexec "{sys.executable}" -I -S -B "{SHIM}" worker "$@"\n')
-    for script in (taskkill, launcher):
-        script.chmod(script.stat().st_mode | stat.S_IXUSR | stat.S_IXGRP | stat.S_IXOTH)
-    log = tmp_path / "taskkill.log"
-    env = {"PATH": str(bin_dir), "HOME": str(tmp_path), "LANG": "C.UTF-8", "TASKKILL_LOG": str(log),
-           "PYTHONPATH": str(Path(grader.__file__).resolve().parents[1]),
-           "SIMIAM_CACHE_DIR": str(tmp_path / "cache")}
+def emulated(tmp_path: Path) -> WindowsLike:
+    return WindowsLike(tmp_path)
+
+
+@pytest.fixture
+def windows_like(emulated: WindowsLike, tmp_path: Path):
+    """grade(week, folder, *args) -> (CompletedProcess, result JSON or None) in the emulated Windows."""
 
     def grade(week: str, folder: Path, *args: str) -> tuple[subprocess.CompletedProcess, dict | None]:
-        out = tmp_path / f"out-{folder.name}"
-        report = out / "result.json"
-        done = subprocess.run([sys.executable, str(SHIM), "grade", str(launcher), week, str(folder),
-                               "--out", str(out), "--json", str(report), *args], capture_output=True,
-                              text=True, env=env, cwd=tmp_path, timeout=600)
+        report = tmp_path / f"out-{folder.name}" / "result.json"
+        done = emulated.run(GRADE, week, str(folder), "--out", str(report.parent), "--json", str(report),
+                            *args)
         return done, json.loads(report.read_text()) if report.exists() else None
 
-    grade.taskkill_log = log  # type: ignore[attr-defined]
     return grade
 
 
@@ -87,7 +73,7 @@ def test_the_stub_scores_zero_there(windows_like) -> None:
     assert "local check only:" in done.stdout
 
 
-def test_an_endless_loop_times_out_and_its_worker_is_killed(windows_like, tmp_path: Path) -> None:
+def test_an_endless_loop_times_out_and_its_worker_is_killed(windows_like, emulated, tmp_path: Path) -> None:
     folder = build("windows_like", "endless_loop", tmp_path / "subs")
     done, result = windows_like("week3", folder, "--check", "week3.go_to_goal.reach_goals")
     assert done.returncode == 1, done.stderr + done.stdout
@@ -95,10 +81,11 @@ def test_an_endless_loop_times_out_and_its_worker_is_killed(windows_like, tmp_pa
     text = json.dumps(result)
     assert "time limit per call" in text
     # the timed-out worker was ended through taskkill /T (no process groups here)
-    assert windows_like.taskkill_log.read_text().strip()
+    assert emulated.killed()
 
 
-def test_a_child_process_of_the_submission_is_gone_when_grade_returns(windows_like, tmp_path: Path) -> None:
+def test_a_child_process_of_the_submission_is_gone_when_grade_returns(windows_like, emulated,
+                                                                      tmp_path: Path) -> None:
     folder = build("windows_like", "child_process", tmp_path / "subs")
     pid_file = tmp_path / "child.pid"
     source = folder / "go_to_goal.py"
@@ -108,9 +95,7 @@ def test_a_child_process_of_the_submission_is_gone_when_grade_returns(windows_li
     children = [int(line) for line in pid_file.read_text().split()]
     try:
         assert children  # the submission did start its child processes
-        killed = {int(pid) for line in windows_like.taskkill_log.read_text().splitlines()
-                  for pid in line.split()[1:]}
-        assert set(children) <= killed  # taskkill /T reached them through the worker's tree
+        assert set(children) <= emulated.killed()  # taskkill /T reached them through the worker's tree
         for pid in children:
             assert not _alive(pid), f"the submission's child {pid} outlived grade"
     finally:  # a wrong version leaves them: do not leave them sleeping on the machine

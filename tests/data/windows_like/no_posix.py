@@ -17,7 +17,8 @@ is imported, every POSIX-only piece the grader or the worker could reach is made
 sys.platform and os.name stay Linux's (numpy and the standard library branch on them): the emulation is
 of missing capabilities, which is what the grader's code tests for.
 
-    python no_posix.py grade LAUNCHER ARGS...   the grade command, its workers started through LAUNCHER
+    python no_posix.py run LAUNCHER MODULE:FUNCTION ARGS...   a console script (grader.cli:main is `grade`),
+                                                               its workers started through LAUNCHER
     python no_posix.py worker [-I -S -B] SCRIPT ARGS...   a worker (what LAUNCHER runs)
 """
 
@@ -87,11 +88,12 @@ ctypes.CDLL = _WindowsCDLL
 
 def main(argv: list[str]) -> None:
     role, rest = argv[0], argv[1:]
-    if role == "grade":
+    if role == "run":
         sys.executable = rest[0]  # workers start through the launcher, so they run in this emulation too
-        from grader.cli import main as grade
+        import importlib
 
-        sys.exit(grade(rest[1:]))
+        module, _, function = rest[1].partition(":")
+        sys.exit(getattr(importlib.import_module(module), function)(rest[2:]))
     while rest and rest[0].startswith("-"):  # the interpreter flags the launcher passed on (-I -S -B)
         rest.pop(0)
     import runpy
