@@ -37,10 +37,11 @@ class WindowsLike:
                     "PYTHONPATH": str(Path(grader.__file__).resolve().parents[1]),
                     "SIMIAM_CACHE_DIR": str(folder / "cache")}
 
-    def run(self, entry: str, *args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
+    def run(self, entry: str, *args: str, cwd: Path | None = None, timeout: float = 600
+            ) -> subprocess.CompletedProcess:
         return subprocess.run([sys.executable, str(SHIM), "run", str(self.launcher), entry, *args],
                               capture_output=True, text=True, env=self.env, cwd=cwd or self.folder,
-                              timeout=600)
+                              timeout=timeout)
 
     def killed(self) -> set[int]:
         """The pids the emulated taskkill has killed so far."""

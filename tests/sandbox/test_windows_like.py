@@ -74,7 +74,7 @@ def test_the_stub_scores_zero_there(windows_like) -> None:
 
 
 def test_an_endless_loop_times_out_and_its_worker_is_killed(windows_like, emulated, tmp_path: Path) -> None:
-    folder = build("windows_like", "endless_loop", tmp_path / "subs")
+    folder = build("stuck", "week3_endless_loop", tmp_path / "subs")
     done, result = windows_like("week3", folder, "--check", "week3.go_to_goal.reach_goals")
     assert done.returncode == 1, done.stderr + done.stdout
     assert result is not None and result["score"] == 0
