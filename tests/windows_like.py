@@ -6,14 +6,16 @@ from __future__ import annotations
 import stat
 import subprocess
 import sys
+from importlib.metadata import distribution
 from pathlib import Path
 
 import grader
 
 DATA = Path(__file__).resolve().parent / "data" / "windows_like"
 SHIM = DATA / "no_posix.py"
-GRADE = "grader.cli:main"      # the console scripts of pyproject.toml's [project.scripts]
-SIMIAM = "simiam.cli:main"
+# the console scripts as this installation's metadata has them (tests/packaging/test_wheel.py: pyproject.toml)
+_SCRIPTS = {e.name: e.value for e in distribution("simiam").entry_points if e.group == "console_scripts"}
+GRADE, SIMIAM = _SCRIPTS["grade"], _SCRIPTS["simiam"]
 
 
 class WindowsLike:
