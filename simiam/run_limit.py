@@ -52,34 +52,41 @@ def step_limit(seconds: float) -> Iterator[None]:
 def _watchdog(seconds: float) -> Iterator[None]:
     """StepTimeout raised in this thread by another once the body has run `seconds`, then every half
     second until it ends (as the alarm repeats). CPython's PyThreadState_SetAsyncExc delivers it at the
-    next bytecode: an endless Python loop stops; a long sleep stops when it returns."""
+    next bytecode: an endless Python loop stops; a long sleep stops when it returns.
+
+    The exception may land anywhere in this thread, even in this function's own lines: `ended` (a plain
+    flag, set in one bytecode) is read and written only under `lock`, and a pending exception is dropped
+    under it, so once the `with lock` in `finally` has run, none can come."""
     import ctypes
 
     target = ctypes.c_ulong(threading.get_ident())
     lock = threading.Lock()
-    done = threading.Event()
+    ended = [False]
+    wake = threading.Event()  # only to end the watcher early; the decision is `ended`
 
     def fire() -> None:
         wait = seconds
-        while not done.wait(wait):
-            with lock:  # never after the body has ended: the end sets `done` under this lock
-                if not done.is_set():
-                    ctypes.pythonapi.PyThreadState_SetAsyncExc(target, ctypes.py_object(StepTimeout))
+        while not wake.wait(wait):
+            with lock:
+                if ended[0]:
+                    return
+                ctypes.pythonapi.PyThreadState_SetAsyncExc(target, ctypes.py_object(StepTimeout))
             wait = 0.5
 
     watcher = threading.Thread(target=fire, name="simiam-step-limit", daemon=True)
-    watcher.start()
     try:
+        watcher.start()
         yield
     finally:
-        while True:  # the StepTimeout may land here too: retry until the watchdog is off and nothing waits
+        while True:
             try:
                 with lock:
-                    done.set()
+                    ended[0] = True
                     ctypes.pythonapi.PyThreadState_SetAsyncExc(target, None)  # drop one not yet raised
                 break
-            except StepTimeout:
+            except StepTimeout:  # it landed here, before the flag was set: set it again
                 continue
+        wake.set()
 
 
 class LimitedBrain:

@@ -41,3 +41,35 @@ def test_simiam_migrate_carries_week3_into_week4(tmp_path: Path) -> None:
     assert done.returncode == 0, done.stderr + done.stdout
     assert done.stdout.count("  moved  ") == 4 and "Wrote go_to_goal.py." in done.stdout
     assert (tmp_path / "week4" / "go_to_goal.py").read_text().count(MINE.strip()) == 4
+
+
+def test_the_watchdog_stops_a_loop_and_never_fires_once_the_step_has_ended(monkeypatch) -> None:
+    """The step limit without SIGALRM (run_limit._watchdog), in this process: a loop is stopped, and a
+    step that ends just before its limit never gets a StepTimeout later, outside the step (a race the
+    lock and the clearing of a pending exception close)."""
+    import signal
+    import time
+
+    import pytest
+
+    from simiam.run_limit import StepTimeout, step_limit
+
+    monkeypatch.delattr(signal, "setitimer")
+    with pytest.raises(StepTimeout), step_limit(0.05):
+        while True:
+            pass
+    leaked = 0
+    for _ in range(200):  # steps that end around their limit: the watchdog fires at about that moment
+        try:
+            with step_limit(0.002):
+                end = time.perf_counter() + 0.002
+                while time.perf_counter() < end:
+                    pass
+        except StepTimeout:
+            pass  # raised inside the step: what a limit does
+        try:
+            for _ in range(20000):  # bytecodes outside any step: a StepTimeout here would be a leak
+                pass
+        except StepTimeout:
+            leaked += 1
+    assert leaked == 0
