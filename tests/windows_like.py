@@ -34,7 +34,8 @@ class WindowsLike:
         for script in (taskkill, self.launcher):
             script.chmod(script.stat().st_mode | stat.S_IXUSR | stat.S_IXGRP | stat.S_IXOTH)
         self.taskkill_log = folder / "taskkill.log"
-        self.env = {"PATH": str(bin_dir), "HOME": str(folder), "LANG": "C.UTF-8",
+        # cp1252 output, strict: what `grade week3 > log.txt` writes with on Windows
+        self.env = {"PATH": str(bin_dir), "HOME": str(folder), "PYTHONIOENCODING": "cp1252",
                     "TASKKILL_LOG": str(self.taskkill_log),
                     "PYTHONPATH": str(Path(grader.__file__).resolve().parents[1]),
                     "SIMIAM_CACHE_DIR": str(folder / "cache")}

@@ -11,6 +11,7 @@ is imported, every POSIX-only piece the grader or the worker could reach is made
   standard library's POSIX subprocess.Popen.kill needs it here (on Windows, kill is TerminateProcess);
 - /proc: open, os.open, os.stat, os.scandir and os.listdir raise FileNotFoundError for it (Python code
   only: C libraries such as OpenBLAS still read it);
+- text files opened without an encoding are read and written as cp1252, Windows' usual ANSI code page;
 - platform.machine() says "AMD64", as on Windows, so no seccomp filter is offered; ctypes.CDLL(None)
   raises, as there is no C library by that name on Windows.
 
@@ -65,7 +66,17 @@ def _no_proc(function):
     return refuse
 
 
-builtins.open = io.open = _no_proc(io.open)
+def _windows_encoding(function):
+    """Text files opened without an encoding use the ANSI code page on Windows (cp1252 in Western
+    Europe and the Americas), not UTF-8: so here too (the C locale of this machine would say UTF-8)."""
+    def opened(file, mode="r", buffering=-1, encoding=None, *args, **kwargs):
+        if "b" not in mode and encoding in (None, "locale"):
+            encoding = "cp1252"
+        return function(file, mode, buffering, encoding, *args, **kwargs)
+    return opened
+
+
+builtins.open = io.open = _no_proc(_windows_encoding(io.open))
 for name in ("open", "stat", "lstat", "scandir", "listdir"):
     setattr(os, name, _no_proc(getattr(os, name)))
 
