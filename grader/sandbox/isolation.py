@@ -243,7 +243,13 @@ def clean_env() -> dict[str, str]:
     """The worker's whole environment: nothing inherited from the grader (no tokens, no paths) but the
     numeric environment simiam.numerics pins before the worker's numpy loads (one BLAS kernel, one thread,
     one SIMD level: the same wheel speeds from the same code on every CPU)."""
-    return {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8", **numerics.plan()}
+    env = {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8", **numerics.plan()}
+    if os.name == "nt":  # Windows' runtime needs its own folders to start Python, and a temp folder
+        env.update({k: os.environ[k] for k in WINDOWS_ENV if k in os.environ})
+    return env
+
+
+WINDOWS_ENV = ("SYSTEMROOT", "WINDIR", "TEMP", "TMP")  # folders of the system, not the user's secrets
 
 
 def worker_library(mode: str, beside: Path) -> Path:

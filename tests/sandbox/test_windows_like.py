@@ -115,3 +115,20 @@ def _alive(pid: int) -> bool:
     except (OSError, IndexError):
         return False
     return state not in (b"Z", b"X")
+
+
+def test_the_worker_environment_keeps_only_what_windows_needs_to_start_python(monkeypatch) -> None:
+    """On Windows Python does not start without SYSTEMROOT; the rest of the grader's environment (tokens,
+    paths) still stays out of the worker's."""
+    from grader.sandbox import isolation
+
+    monkeypatch.setenv("SYSTEMROOT", "C:\\Windows")
+    monkeypatch.setenv("TEMP", "C:\\Users\\ana\\AppData\\Local\\Temp")
+    monkeypatch.setenv("GITHUB_TOKEN", "secret")
+    linux = isolation.clean_env()
+    monkeypatch.setattr(os, "name", "nt")
+    windows = isolation.clean_env()
+    monkeypatch.undo()
+    assert "SYSTEMROOT" not in linux and "GITHUB_TOKEN" not in linux
+    assert windows["SYSTEMROOT"] == "C:\\Windows" and windows["TEMP"].endswith("Temp")
+    assert "GITHUB_TOKEN" not in windows and set(windows) - set(linux) <= set(isolation.WINDOWS_ENV)
