@@ -1,6 +1,8 @@
 """One running worker: start it (per an isolation plan), exchange messages with deadlines, kill its tree.
 
-The grader talks to the worker over two pipes passed as extra file descriptors (never stdin/stdout/stderr).
+The grader talks to a bubblewrap worker over two pipes passed as extra file descriptors (never
+stdin/stdout/stderr); a worker without bubblewrap uses the portable channel (grader.sandbox.channel, a
+subclass), whose transport and tree kill work on every system.
 Every response must carry the id of the pending request, parse as strict JSON and stay within the bounds of
 one answer (grader.inside.answer_bounds: bytes, depth, values, text), checked before anything else reads
 it; anything else is a protocol violation and the worker is killed. A third pipe carries only stack dumps:
