@@ -121,3 +121,25 @@ def test_the_week_folder_rule_takes_the_current_folder_in_any_case(tmp_path: Pat
     folder = tmp_path / "Week3"
     folder.mkdir()
     assert default_week_folder(3, folder) == folder
+
+
+@pytest.mark.parametrize("entry", ["week3\\go_to_goal.py", "C:/week3/go_to_goal.py", "/week3/a.py",
+                                   "week3/aux.py", "week3./a.py", "week3//a.py", "week3/../a.py"])
+def test_the_zips_the_grader_writes_take_no_name_that_unpacks_differently_on_windows(tmp_path: Path,
+                                                                                      entry: str) -> None:
+    from grader.platforms.archive import write_zip
+
+    with pytest.raises(ValueError, match="zip entry"):
+        write_zip(tmp_path / "w.zip", {"week3/go_to_goal.py": b"", entry: b""})
+    assert not (tmp_path / "w.zip").exists()
+    write_zip(tmp_path / "w.zip", {"week3/go_to_goal.py": b"x", "setup.sh": b"y"})
+    assert zipfile.ZipFile(tmp_path / "w.zip").namelist() == ["setup.sh", "week3/go_to_goal.py"]
+
+
+def test_migrate_finds_last_weeks_folder_named_in_any_case(tmp_path: Path, monkeypatch) -> None:
+    """`simiam migrate week4 --from WEEK3` (Windows users type names in any case) finds ./week3."""
+    from simiam.course.migrate import _source_folder
+
+    (tmp_path / "week3").mkdir()
+    monkeypatch.chdir(tmp_path)
+    assert _source_folder("WEEK3", 3).resolve() == (tmp_path / "week3").resolve()
