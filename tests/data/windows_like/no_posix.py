@@ -6,7 +6,8 @@ is imported, every POSIX-only piece the grader or the worker could reach is made
 - modules Windows lacks: fcntl, resource, termios, pwd, grp, pty, tty (set to None in sys.modules);
 - select.poll and select.epoll (Windows has only select() on sockets), so selectors and subprocess pick
   what they would pick there;
-- os: fork, setsid, killpg, process groups, uids and gids, chown, sched_getaffinity, getloadavg;
+- os: fork, setsid, killpg, process groups, uids and gids, chown, sched_getaffinity, getloadavg,
+  set_blocking (Python 3.11 on Windows has none for pipes);
 - signals Windows lacks (SIGUSR1, SIGXCPU, SIGALRM, setitimer, pthread_sigmask...). SIGKILL stays: the
   standard library's POSIX subprocess.Popen.kill needs it here (on Windows, kill is TerminateProcess);
 - /proc: open, os.open, os.stat, os.scandir and os.listdir raise FileNotFoundError for it (Python code
@@ -42,7 +43,8 @@ for name in ("poll", "epoll", "devpoll", "kqueue"):
 for name in ("fork", "forkpty", "setsid", "getsid", "killpg", "getpgid", "setpgid", "getpgrp", "setpgrp",
              "getuid", "geteuid", "getgid", "getegid", "getresuid", "getresgid", "setresuid", "setresgid",
              "setuid", "setgid", "seteuid", "setegid", "setgroups", "getgroups", "initgroups", "chown",
-             "lchown", "fchown", "sched_getaffinity", "sched_setaffinity", "getloadavg", "wait3", "wait4"):
+             "lchown", "fchown", "sched_getaffinity", "sched_setaffinity", "getloadavg", "wait3", "wait4",
+             "set_blocking", "get_blocking"):  # Windows pipes cannot be non-blocking before Python 3.12
     if hasattr(os, name):
         delattr(os, name)
 
