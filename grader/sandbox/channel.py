@@ -78,7 +78,7 @@ class PortableWorker(WorkerProcess):
         self._writer: _Writer | None = None
         if hasattr(select, "poll") and hasattr(os, "set_blocking"):
             # POSIX: the runner's own poll() and non-blocking writes on these pipes; no thread hand-off
-            # per request (two wake-ups each way cost 50-300 us a round trip on a busy 2-core machine).
+            # per request (two more wake-ups a round trip, which a busy machine makes slow).
             self._req_w, self._resp_r = req_w, resp_r
             os.set_blocking(req_w, False)
             self._answers = select.poll()
