@@ -132,3 +132,17 @@ def test_the_worker_environment_keeps_only_what_windows_needs_to_start_python(mo
     assert "SYSTEMROOT" not in linux and "GITHUB_TOKEN" not in linux
     assert windows["SYSTEMROOT"] == "C:\\Windows" and windows["TEMP"].endswith("Temp")
     assert "GITHUB_TOKEN" not in windows and set(windows) - set(linux) <= set(isolation.WINDOWS_ENV)
+
+
+def test_the_request_writer_thread_never_blocks_the_grader() -> None:
+    """Windows' path (grader.sandbox.channel._Writer): a request the worker does not read gives up after
+    its time instead of blocking the grader; one to a worker that is gone fails at once."""
+    from grader.sandbox.channel import _Writer
+
+    read_end, write_end = os.pipe()
+    writer = _Writer(write_end)
+    assert writer.write(b"ping\n", 5.0)  # fits in the pipe: done
+    assert not writer.write(b"x" * (4 << 20), 0.2)  # nobody reads 4 MB: given up, the grader goes on
+    os.close(read_end)  # the worker is gone: the blocked write fails, and so does every later one
+    assert not writer.write(b"ping\n", 5.0)
+    writer.stop()
