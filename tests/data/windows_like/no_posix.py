@@ -7,7 +7,7 @@ is imported, every POSIX-only piece the grader or the worker could reach is made
 - select.poll and select.epoll (Windows has only select() on sockets), so selectors and subprocess pick
   what they would pick there;
 - os: fork, setsid, killpg, process groups, uids and gids, chown, sched_getaffinity, getloadavg,
-  set_blocking (Python 3.11 on Windows has none for pipes);
+  set_blocking (Python 3.11 on Windows has none for pipes), O_NOFOLLOW and O_DIRECTORY, dir_fd support;
 - signals Windows lacks (SIGUSR1, SIGXCPU, SIGALRM, setitimer, pthread_sigmask...). SIGKILL stays: the
   standard library's POSIX subprocess.Popen.kill needs it here (on Windows, kill is TerminateProcess);
 - /proc: open, os.open, os.stat, os.scandir and os.listdir raise FileNotFoundError for it (Python code
@@ -47,6 +47,11 @@ for name in ("fork", "forkpty", "setsid", "getsid", "killpg", "getpgid", "setpgi
              "set_blocking", "get_blocking"):  # Windows pipes cannot be non-blocking before Python 3.12
     if hasattr(os, name):
         delattr(os, name)
+
+for name in ("O_NOFOLLOW", "O_DIRECTORY", "O_CLOEXEC", "O_NOCTTY", "O_NONBLOCK"):  # no such open flags
+    if hasattr(os, name):
+        delattr(os, name)
+os.supports_dir_fd = set()  # no *at() calls on Windows: simiam.safe_write takes its by-path way
 
 WINDOWS_SIGNALS = {"SIGABRT", "SIGFPE", "SIGILL", "SIGINT", "SIGSEGV", "SIGTERM", "SIGBREAK",
                    "SIGKILL"}  # SIGKILL: see the docstring
