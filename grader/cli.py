@@ -21,6 +21,7 @@ from pathlib import Path
 
 from grader.grading import DEFAULT_SEED, CourseFilesMissing, grade_submission, write_outputs
 from grader.result import all_passed
+from grader.sandbox.capabilities import has_module
 from grader.terminal import print_result
 from grader.untrusted import printable
 from simiam import safe_write
@@ -160,6 +161,9 @@ def main(argv: list[str] | None = None) -> int:
         if args.batch:
             if len(weeks) != 1:
                 raise ValueError("--batch grades one week at a time")
+            if not has_module("fcntl"):  # its store locks files with fcntl, its pool passes descriptors
+                raise ValueError("--batch (grading a whole class) needs Linux or macOS; on Windows run it "
+                                 "in WSL (Windows Subsystem for Linux). Grading one submission works here.")
             from grader.batch.runner import main as batch_main
 
             args.week_number = weeks[0]

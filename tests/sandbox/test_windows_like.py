@@ -146,3 +146,13 @@ def test_the_request_writer_thread_never_blocks_the_grader() -> None:
     os.close(read_end)  # the worker is gone: the blocked write fails, and so does every later one
     assert not writer.write(b"ping\n", 5.0)
     writer.stop()
+
+
+def test_batch_grading_says_it_needs_linux_or_macos(emulated: WindowsLike, tmp_path: Path) -> None:
+    """The class-wide batch locks files with fcntl and passes descriptors to its grading processes: on
+    Windows it stops with a sentence, not an ImportError traceback, and grading one submission still works."""
+    (tmp_path / "class").mkdir()
+    done = emulated.run(GRADE, "week3", "--batch", str(tmp_path / "class"))
+    assert done.returncode == 2, done.stderr + done.stdout
+    assert done.stderr.startswith("grade: --batch (grading a whole class) needs Linux or macOS")
+    assert "Traceback" not in done.stderr
