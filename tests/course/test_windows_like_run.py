@@ -14,11 +14,13 @@ from windows_like import SIMIAM, WindowsLike
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def test_simiam_run_runs_the_week3_solution(tmp_path: Path) -> None:
-    shutil.copytree(ROOT / "solutions" / "week3", tmp_path / "week3")
-    done = WindowsLike(tmp_path).run(SIMIAM, "run", "week3", "--seconds", "3")
+def test_simiam_run_runs_the_week3_solution_from_a_folder_named_in_another_case(tmp_path: Path) -> None:
+    """Inside `Week3` (as a Windows user may have named it), `simiam run week3` takes the current folder."""
+    folder = tmp_path / "Week3"
+    shutil.copytree(ROOT / "solutions" / "week3", folder)
+    done = WindowsLike(tmp_path).run(SIMIAM, "run", "week3", "--seconds", "3", cwd=folder)
     assert done.returncode == 0, done.stderr + done.stdout
-    assert (tmp_path / "runs" / "week3.json").is_file() and (tmp_path / "runs" / "week3.html").is_file()
+    assert (folder / "runs" / "week3.json").is_file() and (folder / "runs" / "week3.html").is_file()
 
 
 def test_an_endless_loop_in_simiam_run_is_stopped_without_sigalrm(tmp_path: Path) -> None:
