@@ -12,8 +12,9 @@ cannot pass others), no poll(), no process groups, no /proc, no signals Windows 
   stops reading costs the grader WRITE_SECONDS at most, never a blocked write) and a reader thread queues
   the answers; a deadline is a `get` with a timeout. The emulated Windows of the tests takes this path.
 - A call past its deadline kills the worker's whole tree: its process group where the system has them
-  (os.killpg), else `taskkill /T /F` (Windows walks the tree by parent pid), then the process itself. As
-  root on Linux the dedicated uid is swept as well (runner.kill_uid).
+  (os.killpg), else `taskkill /T /F` (Windows walks the tree by parent pid), then the process itself. On
+  Windows a Job object (grader.sandbox.winjob, not tried on Windows) is ended first, which also reaches
+  processes that left the tree. As root on Linux the dedicated uid is swept as well (runner.kill_uid).
 - Where SIGUSR1 exists (POSIX) the timed-out worker is first asked for a stack dump, which faulthandler
   writes on a pipe of its own passed as one more descriptor (runner.WorkerProcess._dump_stack). Without it
   (Windows) a timeout says only that the time ran out, not where.
@@ -32,6 +33,7 @@ import time
 
 from grader.inside.answer_bounds import MAX_ANSWER_BYTES
 from grader.inside.protocol import LineReader
+from grader.sandbox import winjob
 from grader.sandbox.isolation import WorkerPlan
 from grader.sandbox.output import CappedOutput
 from grader.sandbox.runner import (
@@ -73,6 +75,8 @@ class PortableWorker(WorkerProcess):
             for fd in (req_r, resp_w, out_w, dump_w):
                 if fd >= 0:
                     os.close(fd)
+        # Windows: a job holds the worker and all it starts, orphans included (winjob; else taskkill)
+        self._job = winjob.contain(self.proc) if os.name == "nt" else None
         self.output = CappedOutput(out_r, output_cap)
         self._reader = LineReader(MAX_ANSWER_BYTES)
         self._writer: _Writer | None = None
@@ -117,6 +121,9 @@ class PortableWorker(WorkerProcess):
         return super()._dump_stack()
 
     def _kill_tree(self) -> None:
+        if self._job is not None:
+            winjob.end(self._job)
+            self._job = None
         kill_tree(self.proc)
 
     def _close_channel(self) -> None:

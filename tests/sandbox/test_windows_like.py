@@ -156,3 +156,22 @@ def test_batch_grading_says_it_needs_linux_or_macos(emulated: WindowsLike, tmp_p
     assert done.returncode == 2, done.stderr + done.stdout
     assert done.stderr.startswith("grade: --batch (grading a whole class) needs Linux or macOS")
     assert "Traceback" not in done.stderr
+
+
+def test_the_job_object_structure_has_windows_layout_and_is_not_made_elsewhere() -> None:
+    """grader.sandbox.winjob cannot run here; what can be checked is its structure's size (144 bytes for
+    JOBOBJECT_EXTENDED_LIMIT_INFORMATION on 64-bit Windows: a wrong field type shifts LimitFlags and the
+    kill-on-close flag lands elsewhere) and that no job is attempted off Windows (taskkill is used)."""
+    import ctypes
+
+    from grader.sandbox.winjob import ExtendedLimits, contain
+
+    if ctypes.sizeof(ctypes.c_void_p) == 8:
+        assert ctypes.sizeof(ExtendedLimits) == 144
+        assert ExtendedLimits.BasicLimitInformation.offset == 0
+        assert ExtendedLimits.IoInfo.offset == 64
+    process = subprocess.Popen([sys.executable, "-c", "pass"])
+    try:
+        assert contain(process) is None
+    finally:
+        process.wait()
