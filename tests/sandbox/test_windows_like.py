@@ -175,3 +175,13 @@ def test_the_job_object_structure_has_windows_layout_and_is_not_made_elsewhere()
         assert contain(process) is None
     finally:
         process.wait()
+
+
+def test_what_the_student_prints_comes_back_there(windows_like, tmp_path: Path) -> None:
+    """Printed output goes through fd 1 -> fd 2 in the worker and the output thread's blocking reads here
+    (no poll(), no FIONREAD): the first debug line is in the result, and the check still passes."""
+    folder = build("submissions", "week2_debug_prints", tmp_path / "subs")
+    done, result = windows_like("week2", folder, "--check", "week2.go_to_angle.reaches_theta_d")
+    assert result is not None, done.stderr + done.stdout
+    assert result["checks"][0]["status"] == "passed"
+    assert result["student_output"].startswith("debug call 1: v = ")
