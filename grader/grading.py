@@ -30,6 +30,7 @@ from simiam import safe_write
 from simiam.course.shipped import files_to_write, missing_note, shipped_version
 
 DEFAULT_SEED = 2014
+HIDDEN_OUTPUT_CHARS = 1500  # per hidden check: shown in its own Gradescope test (4000 characters in all)
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -55,6 +56,7 @@ class _Job:
     traces: dict[str, dict]
     began: float
     start_nudge: tuple[float, float] = (0.0, 0.0)
+    official: bool = False
 
 
 def select_checks(week: int, hidden: bool, only: str | None = None) -> tuple[list[Check], list[Check]]:
@@ -166,6 +168,7 @@ def grade_submission(
     replay_prefix: str | None = None,
     traces: dict[str, dict] | None = None,
     start_nudge: tuple[float, float] = (0.0, 0.0),
+    official: bool = False,
 ) -> dict:
     """Grade one submission folder for course week `week` and return the result JSON (see the module doc).
 
@@ -173,6 +176,8 @@ def grade_submission(
     property (the replay line a failing property prints). Scenario traces go into `traces` (by check id)
     when a dict is given, and into the HTML report when `out_dir` is given. `start_nudge` (dx, dy) m moves
     the true start pose of every scenario run (Context.start_nudge; tests only, never a command line).
+    `official` says this is a platform's official grading (grader.platforms.official): where that machine
+    lacks part of the sandbox, the isolation note says so, not "local check only" (capabilities).
     """
     week = int(week)
     submission = Path(submission)
@@ -180,7 +185,8 @@ def grade_submission(
     began = time.monotonic()
     with tempfile.TemporaryDirectory(prefix="simiam-grade-") as tmp:
         # the worker starts first: it boots while the checks (and the report's templates) are imported
-        started = _start(week, submission, Path(tmp), limits, sandbox) if submission.is_dir() else None
+        started = _start(week, submission, Path(tmp), limits, sandbox, official) \
+            if submission.is_dir() else None
         try:
             selected, left_out = select_checks(week, hidden, only)
             if out_dir is not None and started is not None:
@@ -195,7 +201,7 @@ def grade_submission(
                 return _finish(result, traces, out_dir)
             try:
                 job = _Job(week, submission, seed, hidden, sandbox, case, limits, replay_prefix, selected,
-                           extra, traces, began, (float(start_nudge[0]), float(start_nudge[1])))
+                           extra, traces, began, (float(start_nudge[0]), float(start_nudge[1])), official)
                 result = _grade(job, started)
             except CourseFilesMissing:
                 raise
@@ -220,11 +226,12 @@ class _Started:
     error: Exception | None = None
 
 
-def _start(week: int, submission: Path, tmp: Path, limits: Limits | None, sandbox: str) -> _Started:
+def _start(week: int, submission: Path, tmp: Path, limits: Limits | None, sandbox: str,
+           official: bool = False) -> _Started:
     """Splice the submission and spawn its worker without waiting for it (StudentSession.start)."""
     try:
         spliced, problems, notices = _splice(week, submission, tmp)
-        session = StudentSession(week, spliced, limits, sandbox=sandbox)
+        session = StudentSession(week, spliced, limits, sandbox=sandbox, official=official)
     except Exception as exc:  # noqa: BLE001 - raised again by _grade, where grade_submission handles it
         return _Started(error=exc)
     session.start()
@@ -233,7 +240,7 @@ def _start(week: int, submission: Path, tmp: Path, limits: Limits | None, sandbo
 
 def _open_session(job: _Job, folder: Path, others: list[StudentSession]) -> StudentSession:
     """A worker on another folder for one check (closed with the grading's own)."""
-    other = StudentSession(job.week, folder, job.limits, sandbox=job.sandbox)
+    other = StudentSession(job.week, folder, job.limits, sandbox=job.sandbox, official=job.official)
     others.append(other)
     other.start()
     return other
@@ -290,14 +297,21 @@ def _grade(job: _Job, started: _Started) -> dict:
             open_session=lambda folder: _open_session(job, folder, others),
             start_nudge=job.start_nudge,
         )
-        results: list[CheckResult] = []
-        timing = {}
+        timing: dict[str, float] = {}
+        ran: dict[str, CheckResult] = {}
+        # Visible checks first: what the code prints until then is the result's student_output. Then each
+        # hidden check, its output taken after it into its own result: code that prints (or keeps and
+        # prints later) a hidden goal shows it only where that check's result is shown.
+        visible = [c for c in job.selected if c.visibility == "visible"]
+        for check in visible:
+            ran[check.id] = _run_timed(check, ctx, problems, timing)
+        job.extra["student_output"] = cut_middle(session.take_output(), 4000)
         for check in job.selected:
-            t0 = time.monotonic()
-            results.append(run_check(check, ctx, problems))
-            timing[check.id] = round(time.monotonic() - t0, 3)
+            if check.id not in ran:
+                ran[check.id] = _run_timed(check, ctx, problems, timing)
+                ran[check.id].printed = cut_middle(session.take_output(), HIDDEN_OUTPUT_CHARS)
+        results = [ran[check.id] for check in job.selected]
         job.extra["problems"] = problems
-        job.extra["student_output"] = cut_middle(session.output(), 4000)
         job.extra["timing"] = {"total_seconds": round(time.monotonic() - job.began, 3), "checks": timing}
     finally:
         session.close()
@@ -312,6 +326,14 @@ def _grade(job: _Job, started: _Started) -> dict:
         message=loss_summary(results, problems),
         extra=job.extra,
     )
+
+
+def _run_timed(check: Check, ctx: Context, problems: dict[str, list[str]],
+               timing: dict[str, float]) -> CheckResult:
+    t0 = time.monotonic()
+    result = run_check(check, ctx, problems)
+    timing[check.id] = round(time.monotonic() - t0, 3)
+    return result
 
 
 def _invalid(

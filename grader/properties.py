@@ -63,7 +63,7 @@ def _replay(ctx: Context, check_id: str, inputs: dict[str, Any]) -> str:
 
 def _sandbox_words(exc: SandboxError, inputs: dict[str, Any]) -> str:
     where = ", ".join(f"{k} = {v}" for k, v in inputs.items())
-    return f"with {where} your code raised an error: {exc}" if isinstance(exc, StudentError) else str(exc)
+    return f"with {where}, your code raised an error: {exc}" if isinstance(exc, StudentError) else str(exc)
 
 
 def case_seed(ctx: Context, check_id: str) -> int:

@@ -32,9 +32,13 @@ class CheckResult:
     message: str = ""
     details: dict[str, Any] = field(default_factory=dict)
     plots: tuple[str, ...] = ()  # what the report draws for each run of a scenario check (Check.plots)
+    # what the student's code printed while a hidden check ran: it may show the hidden goals, so it goes
+    # with this check's result and visibility, never into the result's top-level student_output
+    printed: str = ""
 
     def to_json(self) -> dict[str, Any]:
-        """The contract's per-check record (plus `visibility`, and `plots` for a scenario check)."""
+        """The contract's per-check record (plus `visibility`, `plots` for a scenario check, and `printed`
+        for a hidden check during which the student's code printed something)."""
         record: dict[str, Any] = {
             "id": self.id,
             "name": self.name,
@@ -48,6 +52,8 @@ class CheckResult:
         }
         if self.plots:
             record["plots"] = list(self.plots)
+        if self.printed:
+            record["printed"] = self.printed
         return record
 
 

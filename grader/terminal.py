@@ -109,8 +109,9 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
         n = result.get("hidden_checks_not_run", 0)
         ran = result.get("visible_checks", len(checks))
         vary = hidden_variants(result.get("week"))  # what the week's hidden checks vary
+        verb = "runs" if n == 1 else "run"
         p.wrapped(f"{_count(ran, 'visible check')} ran here"
-                  + (f"; {_count(n, 'hidden check')} ({vary}, drawn per seed) run at official grading"
+                  + (f"; {_count(n, 'hidden check')} ({vary}, drawn per seed) {verb} at official grading"
                      if n else ""), "  ")
     lost = [c for c in checks if c.get("status") != "passed"]
     if lost:  # the end of the output is what a student sees first: what to fix, in the table's order

@@ -29,7 +29,7 @@ from simiam.laps import Gate, count_laps
 from simiam.run_limit import LimitedBrain, StepTimeout, step_limit, stuck_at
 from simiam.signals import week_signals
 from simiam.simulator import Simulator
-from simiam.trace import Ending, EndReason, Trace
+from simiam.trace import BROKEN, Ending, EndReason, Trace
 from simiam.world import World, WorldFileError, load_world
 
 MAX_STEPS = 1_000_000  # 9 simulated hours at 0.033 s; a trace of that size is already ~1 GB in memory
@@ -145,6 +145,10 @@ def _run(args: argparse.Namespace, week: Week, folder: Path, run_folder: Path, w
     assert trace.ending is not None  # run() always says how it ended
     error = _ending_words(trace.ending, folder, run_folder)
 
+    if error:  # first: what broke the run is what to fix; the summary below only describes the remains
+        print(error, file=sys.stderr)
+        print(file=sys.stderr)
+        sys.stderr.flush()
     out = Path(args.out)
     try:  # never through a link (simiam.safe_write): LinkRefused is an OSError that names the link
         csv_path, json_path = trace.write(out, stem=week.name)
@@ -159,11 +163,7 @@ def _run(args: argparse.Namespace, week: Week, folder: Path, run_folder: Path, w
     print(summary(week, folder, trace, sup, gate=lap_gate(week, world)))
     if trace.meta["numerics"]["note"]:
         print(f"numerics: {trace.meta['numerics']['note']}")
-    if error:
-        print(file=sys.stderr)
-        print(error, file=sys.stderr)
-        return 1
-    return 0
+    return 1 if error else 0
 
 
 def _ending_words(ending: Ending, folder: Path, run_folder: Path) -> str | None:
@@ -280,7 +280,10 @@ def summary(week: Week, folder: Path, trace: Trace, sup: Supervisor, gate: Gate 
         # decimals, so that "not reached, 0.050 m" never sits beside "reached, 0.050 m" (issue 21).
         closest = min(math.hypot(px - gx, py - gy) for px, py in zip(s["x"], s["y"], strict=True))
         stopped = [t for t, st in zip(s["t"], s["state"], strict=True) if st == "stop"]
-        when = f"stopped at t = {stopped[0]:.2f} s" if stopped else "never stopped"
+        ending = trace.ending
+        when = (f"stopped at t = {stopped[0]:.2f} s" if stopped
+                else f"was stopped by your code's error at t = {ending.t:.2f} s (printed first)"
+                if ending is not None and ending.reason in BROKEN else "never stopped")
         by_estimate = ""
         if stopped and None not in est:
             by_estimate = (f" (its estimate {math.hypot(est[0] - gx, est[1] - gy):.4f} m from it: the robot "

@@ -31,6 +31,9 @@ MAX_POINTS = 64         # columns of a points signal (a QuickBot has 5 IR sensor
 MAX_COUNT = 10**9       # a count signal (switches in a run: far fewer)
 MAX_SIGNALS = 64        # signals one trace declares
 NAME_CHARS = 40         # a signal's name (a column of the trace and the CSV)
+# The unit of a vector2 that is two numbers, not a vector in the world (week 7's sigma: the coefficients of
+# u_gtg and u_ao): plotted over time, never drawn as an arrow from the robot (it ran out of the arena).
+COEFFICIENTS = "coefficients"
 
 
 @dataclass(frozen=True)
@@ -88,10 +91,12 @@ SIGNALS: dict[str, Signal] = {s.name: s for s in (
     _c("u_fw_p", "vector2", doc="follow-wall: the perpendicular from the robot to the wall"),
     _c("u_fw_pp", "vector2", doc="follow-wall: u_fw_p minus d_fw along it"),
     _c("u_fw", "vector2", doc="follow-wall: the vector followed"),
-    _s("sigma", "vector2", doc="sliding mode: [u_gtg u_ao] sigma = u_fw"),
+    _s("sigma", "vector2", doc="sliding mode: [u_gtg u_ao] sigma = u_fw", unit=COEFFICIENTS),
     # week 7 keeps one sigma per side: the last one its sliding_left / sliding_right computed
-    _s("sigma_left", "vector2", doc="sliding mode, wall on the left: the last sigma sliding_left solved"),
-    _s("sigma_right", "vector2", doc="sliding mode, wall on the right: the last sigma sliding_right solved"),
+    _s("sigma_left", "vector2", doc="sliding mode, wall on the left: the last sigma sliding_left solved",
+       unit=COEFFICIENTS),
+    _s("sigma_right", "vector2", doc="sliding mode, wall on the right: the last sigma sliding_right solved",
+       unit=COEFFICIENTS),
     _s("fw_direction", "label", doc="follow-wall direction, 'left' or 'right'"),
     _s("d_prog", "scalar", doc="progress point: the closest the estimate has been to the goal", unit="m"),
     # as they happen (Supervisor.switches_seen): several in one step, and a controller changed around

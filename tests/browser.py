@@ -38,6 +38,23 @@ def chromium_context(viewport: dict, bypass_csp: bool = False) -> Iterator:
     shutil.rmtree(profile, ignore_errors=True)
 
 
+def solution_trace(week: int, seconds: float) -> dict:
+    """The course's solution of `week` driving the week's world for `seconds`, recording the week's own
+    debug signals (as `simiam run` does): the pictures of every week, from real runs."""
+    from simiam.control.local_brain import LocalBrain
+    from simiam.course.loader import load_submission
+    from simiam.course.weeks import get_week
+    from simiam.signals import week_signals
+    from simiam.simulator import Simulator
+    from simiam.world import load_world
+
+    cfg = get_week(week)
+    sub = load_submission(DATA.parent.parent / "solutions" / f"week{week}", cfg)
+    sim = Simulator(load_world(cfg.world), LocalBrain(sub, cfg), spec=cfg.spec, dt=0.033, start=cfg.start,
+                    signals=week_signals(cfg))
+    return sim.run(seconds=seconds).to_json()
+
+
 def load_synthetic(module_name: str) -> ModuleType:
     """The synthetic trace generator (tests/data/traces/synthetic.py) as a module."""
     spec = importlib.util.spec_from_file_location(module_name, DATA / "traces" / "synthetic.py")

@@ -88,6 +88,8 @@ def gradescope_result(result: dict) -> dict:
         output = str(check.get("message") or "")
         if check.get("status") in ("error", "timeout"):
             output = f"[{check['status']}] {output}".strip()
+        if check.get("printed"):   # a hidden check's: shown in this test only, with its visibility
+            output += f"\n\nWhat your code printed during this check:\n{check['printed']}"
         tests.append({"name": f"{check.get('id')}: {name}" if check.get("id") else name,
                       "score": float(_number(check.get("points")) or 0.0),
                       "max_score": float(_number(check.get("max_points")) or 0.0),

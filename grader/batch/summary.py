@@ -40,26 +40,56 @@ def check_stats(results: dict[str, dict]) -> list[dict]:
 
 def replay_links(result: dict, page: str) -> list[dict]:
     """Links to the replay sections (``page#run-...``) of the scenario runs a student's report embeds,
-    each run once, grouped by the check that kept it: ``[{"name": "reach_goals", "runs": [{"href",
-    "text": "1", "title", "failed"}, ...]}]``. A run is ``failed`` when any check measured on it failed."""
+    each run once, grouped by the check that kept it, named by its part and check so that week 5's
+    blending and switching runs stay apart: ``[{"name": "blending.reach_goal", "runs": [{"href",
+    "text": "1", "title", "failed"}, ...]}]``. A run is ``failed`` (red) by its own record when a check
+    kept one (not reached, collided, a problem): a run that reached its goal is not red because another
+    run of its check missed; a run no check recorded on its own is failed when a check measured on it
+    failed."""
     runs: dict[str, dict] = {}
     groups: dict[str, list[dict]] = {}
     for check in result.get("checks") or []:
         details = check.get("details") if isinstance(check, dict) else None
         keys = details.get("traces") if isinstance(details, dict) else None
-        for key in keys if isinstance(keys, list) else []:
+        records = details.get("runs") if isinstance(details, dict) else None
+        keys = keys if isinstance(keys, list) else []
+        records = records if isinstance(records, list) and len(records) == len(keys) else [None] * len(keys)
+        for key, record in zip(keys, records, strict=True):
             if not isinstance(key, str):
                 continue
             if key not in runs:
                 name, _, number = key.partition("#")
                 runs[key] = {"href": f"{page}#{run_anchor(key)}", "text": number or "1", "checks": [],
-                             "failed": False}
-                groups.setdefault(name.rsplit(".", 1)[-1], []).append(runs[key])
+                             "own": None, "failed": False}
+                groups.setdefault(name.split(".", 1)[-1], []).append(runs[key])
             runs[key]["checks"].append(f"{check.get('id')}: {check.get('status')}")
             runs[key]["failed"] = runs[key]["failed"] or check.get("status") != "passed"
+            own = _run_failed(record)
+            if own is not None:
+                runs[key]["own"] = own or bool(runs[key]["own"])
     for run in runs.values():
         run["title"] = "; ".join(run.pop("checks"))
+        own = run.pop("own")
+        if own is not None:
+            run["failed"] = own
     return [{"name": name, "runs": group} for name, group in groups.items()]
+
+
+def _run_failed(record: object) -> bool | None:
+    """What a check's record of one run says of it: True (missed its goal, collided or stopped with a
+    problem), False (reached it cleanly), None (the record says neither)."""
+    if not isinstance(record, dict) or not any(k in record for k in ("reached", "collided", "problem")):
+        return None
+    return record.get("reached") is False or record.get("collided") is True or bool(record.get("problem"))
+
+
+def shortened(text: str, limit: int) -> str:
+    """`text` cut to at most `limit` characters at a word's end, with "…" saying that more was cut."""
+    if len(text) <= limit:
+        return text
+    cut = text[:limit - 1]
+    head = cut.rsplit(" ", 1)[0] if " " in cut else cut
+    return head.rstrip(" ,;:") + "…"
 
 
 def graded_scores(results: dict[str, dict]) -> list[float]:
@@ -128,7 +158,7 @@ def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) ->
     students = [{"id": sid, "href": quote(f"{stems[sid]}.html"), "status": r.get("status"),
                  "replays": replay_links(r, quote(f"{stems[sid]}.html")),
                  "score": r.get("score") if isinstance(r.get("score"), (int, float)) else None,
-                 "message": " ".join(str(r.get("message") or "").split())[:300]}
+                 "message": shortened(" ".join(str(r.get("message") or "").split()), 300)}
                 for sid, r in sorted(results.items())]
     return _env.from_string(_TEMPLATE).render(
         csp=STATIC_PAGE_CSP, week=meta.get("week"), seed=meta.get("seed"), hidden=meta.get("hidden"),

@@ -21,6 +21,7 @@ from grader.checks.answers import fmt, vector
 from grader.domains import Floats, Integers, SampledFrom
 from grader.margins import Limit, Margins
 from grader.properties import run_property
+from grader.sentences import then
 from simiam.world import World, load_world
 
 BLEND = ("ao_and_gtg.py",)
@@ -348,9 +349,11 @@ def _reach(mode: str, check_id: str):
             details.append(figures)
             done.append(r)
             notes.add(note)
-        message = "; ".join(lines) + "".join(f". Note: {n}" for n in sorted(notes) if n)
+        message = "; ".join(lines)
+        for n in sorted(notes):
+            message = then(message, f"Note: {n}" if n else "")
         if good < len(done) and not any(r.problem for r in done):
-            message += f". {_run_hint(mode, done)}"
+            message = then(message, _run_hint(mode, done))
         found = {"runs": details, "traces": scenarios.trace_keys(done), "margins": margins.to_json()}
         return Outcome(good / len(done), message, found, status=scenarios.status_of(done))
 

@@ -24,6 +24,7 @@ from grader.domains import Floats, Lists, SampledFrom
 from grader.laps import median_distance, turning_rate
 from grader.margins import CLEARANCE, Limit, Margins
 from grader.properties import run_property
+from grader.sentences import then
 from simiam.course.weeks import get_week
 from simiam.laps import Gate, laps
 from simiam.world import load_world
@@ -505,7 +506,7 @@ def _laps(
     details = {**r.metrics, **figures, "problem": r.problem, "traces": scenarios.trace_keys([r])}
     if r.problem:
         return False, r.problem, details, r
-    return ok, text + (f". Note: {note}" if note else ""), details, r
+    return ok, then(text, f"Note: {note}" if note else ""), details, r
 
 
 def obstacle(world) -> list:

@@ -3,6 +3,7 @@
     grade handout week3 --out release/
     grade package gradescope week3 --out autograder.zip [--seed N] [--hidden-visibility after_published]
     grade package prairielearn week3 --out pl-week3/ [--seed N] [--image NAME] [--timeout S]
+    grade package coursera week3 --out coursera-week3/ [--seed N] [--part-id ID]
     grade selfcheck [--course DIR] [--weeks 2,3] [--jobs N]
 
 Exit status: 0 done (selfcheck: every expectation held), 1 selfcheck found a problem, 2 the command could
@@ -35,11 +36,11 @@ def _parser() -> argparse.ArgumentParser:
     h.add_argument("week", type=_week)
     h.add_argument("--out", type=Path, required=True, help="folder that receives weekN/ and weekN.zip")
     h.add_argument("--course", type=Path, default=None, help="the course checkout (default: here)")
-    k = sub.add_parser("package", help="an autograder for Gradescope or PrairieLearn")
-    k.add_argument("platform", choices=("gradescope", "prairielearn"))
+    k = sub.add_parser("package", help="an autograder for Gradescope, PrairieLearn or Coursera")
+    k.add_argument("platform", choices=("gradescope", "prairielearn", "coursera"))
     k.add_argument("week", type=_week)
     k.add_argument("--out", type=Path, required=True,
-                   help="gradescope: the zip to write; prairielearn: a new folder")
+                   help="gradescope: the zip to write; prairielearn, coursera: a new folder")
     k.add_argument("--course", type=Path, default=None, help="the course checkout (default: here)")
     k.add_argument("--seed", type=int, default=None,
                    help="the secret seed of official grading (default: a fresh random one, printed)")
@@ -48,6 +49,8 @@ def _parser() -> argparse.ArgumentParser:
                    help="Gradescope: when students see the hidden checks (default after_published)")
     k.add_argument("--image", default=None, help="PrairieLearn: the grader image name (default simiam-weekN)")
     k.add_argument("--timeout", type=int, default=120, help="PrairieLearn: seconds per grading job (max 600)")
+    k.add_argument("--part-id", default=None,
+                   help="Coursera: the assignment part this grader grades (default: any part)")
     s = sub.add_parser("selfcheck", help="solutions, stubs and kept wrong versions grade as meant")
     s.add_argument("--course", type=Path, default=None, help="the course checkout (default: here)")
     s.add_argument("--weeks", default=None, help="comma-separated weeks (default: every week of the course)")
@@ -97,6 +100,11 @@ def _package(args: argparse.Namespace, course: Path) -> int:
             raise ValueError(f"--out {args.out}: Gradescope takes a .zip")
         config = gradescope.build(args.week, args.out, course, seed, args.hidden_visibility)
         where = args.out
+    elif args.platform == "coursera":
+        from grader.platforms import coursera
+
+        config = coursera.build(args.week, args.out, course, seed, part_id=args.part_id)
+        where = f"{args.out}/ (zip its contents for Coursera's grader upload, or docker build it)"
     else:
         from grader.platforms import prairielearn
 

@@ -22,6 +22,7 @@ import argparse
 import html
 import os
 import shutil
+import stat
 import sys
 import tempfile
 import time
@@ -102,14 +103,15 @@ def summary_html(result: dict, config: dict) -> str:
         lines.append("Note: " + esc(cap(note, 500)))
     isolation = result.get("isolation")
     if isolation:
-        lines.append(f"Isolation ({esc(str(isolation))}): {esc(cap(result.get('isolation_note'), 600))}")
+        lines.append(f"Isolation ({esc(str(isolation))}): {esc(cap(result.get('isolation_note'), 1600))}")
     numerics = result.get("numerics")
     if isinstance(numerics, dict) and numerics.get("note"):  # the platform's CPU could not be pinned
         lines.append("Numerics: " + esc(cap(numerics.get("note"), 600)))
     printed = result.get("student_output")
     if printed:
-        # its first and last lines, as the result keeps them (grader.sandbox.output), in Gradescope's room
-        lines.append("What your code printed (its first and last lines):<pre>"
+        # its first and last lines, as the result keeps them (grader.sandbox.output), in Gradescope's room;
+        # only what it printed during the visible checks: a hidden check's is in that check's test
+        lines.append("What your code printed during the visible checks (its first and last lines):<pre>"
                      + esc(keep_ends(str(printed), 2000, whole_lines=True)) + "</pre>")
     return "\n".join(lines)
 
@@ -136,6 +138,7 @@ def run(root: Path) -> int:
     began = time.monotonic()
     config: dict = {"week": 0, "hidden_visibility": "after_published"}
     try:
+        close_metadata(root)
         config = read_config(root / "source" / "config.json")
         secret = read_secret(root / "source" / "secret")
         try:
@@ -158,6 +161,21 @@ def run(root: Path) -> int:
                                    "instructor can see why and will regrade.",
                          "extra_data": {"error": type(exc).__name__}})
         return 1
+
+
+def close_metadata(root: Path) -> None:
+    """Close Gradescope's root/submission_metadata.json to every user but root before student code runs.
+    It holds the student's earlier submissions with their whole results, hidden tests' output included,
+    and Gradescope does not say who may read it: without bubblewrap the worker's uid might. The grader
+    never reads it."""
+    path = root / "submission_metadata.json"
+    try:
+        if stat.S_ISREG(os.lstat(path).st_mode):    # never through a link
+            os.chmod(path, 0o600)
+    except FileNotFoundError:
+        pass
+    except OSError as exc:   # grading goes on; the log (instructors only) says what stayed open
+        print(f"could not close {path}: {exc}")
 
 
 def check(root: Path) -> int:

@@ -92,9 +92,11 @@ def read_config(path: Path) -> dict:
     return data
 
 
-def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None) -> dict:
+def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None,
+                 note_filled: bool = True) -> dict:
     """Grade the upload folder of one student with the bundle's seed and hidden set (every check).
-    Course files missing from the upload are taken from `fill_from` (the handout) when it is given.
+    Course files missing from the upload are taken from `fill_from` (the handout) when it is given, with a
+    notice for each unless `note_filled` is false (a platform whose students cannot submit those files).
 
     Returns the contract's result; a refused upload (no course files, hostile zip, ...) raises
     SubmissionRefused with the reason to show the student."""
@@ -108,7 +110,13 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None) ->
     filled = []
     with tempfile.TemporaryDirectory(prefix="simiam-upload-") as tmp:
         skipped: list[str] = []
-        folder = collect(upload, secret.week, Path(tmp) / f"week{secret.week}", skipped)
+        folder = Path(tmp) / f"week{secret.week}"
+        if fill_from is not None and not files_to_write(secret.week) and _empty(upload):
+            # a week with nothing to write (week 1): a question with no editor submits no file at all, and
+            # what is graded is the handout itself
+            folder.mkdir()
+        else:
+            folder = collect(upload, secret.week, folder, skipped)
         if fill_from is not None:
             # only the files the student writes nothing in this week: a missing file to write is named as
             # missing by the grader, not silently replaced by its placeholder
@@ -116,11 +124,17 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None) ->
                 if not (folder / path.name).exists() and path.name not in files_to_write(secret.week):
                     (folder / path.name).write_bytes(path.read_bytes())
                     filled.append(path.name)
-        result = grade_submission(secret.week, folder, seed=secret.seed, hidden=True, sandbox="auto")
+        result = grade_submission(secret.week, folder, seed=secret.seed, hidden=True, sandbox="auto",
+                                  official=True)
     result["submission"] = "your upload"     # not the grader's temporary path
-    result.setdefault("notices", []).extend(missing_note(secret.week, name, True) for name in filled)
+    result.setdefault("notices", []).extend(missing_note(secret.week, name, True)
+                                             for name in filled if note_filled)
     result["notices"][:0] = skipped
     return result
+
+
+def _empty(upload: Path) -> bool:
+    return upload.is_dir() and not any(upload.iterdir())
 
 
 def installed_answers() -> list[str]:
@@ -154,5 +168,5 @@ def main(argv: list[str] | None = None) -> int:
 if __name__ == "__main__":
     raise SystemExit(main())
 
-__all__ = ["BundleBroken", "Secret", "SubmissionRefused", "cap", "grade_upload", "lock_down", "read_config",
-           "read_secret", "write_secret"]
+__all__ = ["BundleBroken", "Secret", "SubmissionRefused", "cap", "grade_upload", "lock_down",
+           "read_config", "read_secret", "write_secret"]

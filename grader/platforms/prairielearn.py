@@ -5,7 +5,8 @@
 writes
 
     pl-week3/question/           -> <course>/questions/simiam_week3/: info.json (externalGradingOptions),
-                                    question.html (one file editor per file with code blocks), starter/*.py
+                                    question.html (a file editor per file with a block new
+                                    this week), starter/*.py
     pl-week3/serverFilesCourse/  -> <course>/serverFilesCourse/: simiam_week3/ (the secret seed and the
                                     week's hidden set; students never see serverFilesCourse)
     pl-week3/image/              -> `docker build -t NAME pl-week3/image`: Dockerfile (Debian + this
@@ -80,7 +81,7 @@ def build(week: int, out: Path, course: Path, seed: int, image: str | None = Non
         starter = copy_handout(week, course, question / "starter")
         readme = (starter / "README.md").read_text(encoding="utf-8")
         (starter / "README.md").unlink()
-        editable = _files_with_blocks(starter)
+        editable = editor_files(week, starter)
         # the image completes a submission with the files students have no editor for (provided code)
         shutil.copytree(starter, img / "starter")
         info = {"uuid": str(uuid.uuid5(_UUID_NAMESPACE, f"simiam/week{week}")),
@@ -104,10 +105,13 @@ def build(week: int, out: Path, course: Path, seed: int, image: str | None = Non
     return config
 
 
-def _files_with_blocks(folder: Path) -> list[str]:
-    from simiam.course.blocks import find_blocks
+def editor_files(week: int, starter: Path) -> list[str]:
+    """The files the question opens an editor for: those holding a block new this week (the week's declared
+    unit says which). Files with only earlier weeks' blocks are provided code, as in the handout: an editor
+    for them would invite edits the grader reports and ignores."""
+    from simiam.course.shipped import files_to_write
 
-    return [p.name for p in sorted(folder.glob("*.py")) if find_blocks(p.read_text(encoding="utf-8"), p.name)]
+    return sorted(name for name in files_to_write(week) if (starter / name).is_file())
 
 
 def _title(readme: str) -> str:
@@ -168,7 +172,9 @@ def run(root: Path, home: Path, secret_dir: Path) -> int:
             lock_down(secret_dir)      # a git checkout keeps no modes: close it before student code runs
         secret = read_secret(secret_dir)
         try:
-            payload = results_json(grade_upload(root / "student", secret, fill_from=home / "starter"))
+            # the files without an editor never come from the student: filling them in is no news to them
+            payload = results_json(grade_upload(root / "student", secret, fill_from=home / "starter",
+                                                note_filled=False))
         except SubmissionRefused as refused:
             payload = not_gradable(str(refused))
         write_atomic(out, fit(payload))

@@ -108,7 +108,10 @@ class Chart:
     vlines: list[tuple[float, str, str]] = field(default_factory=list)
 
     def render(self) -> Markup:
+        legend = _legend_lines([s.label for s in self.series], 46 + 6, self.width - 10)
         ml, mr, mt, mb = 46, 10, 22 if self.title else 8, 34
+        # a legend longer than the chart is wide takes more lines below it
+        extra = 16 * max((line for _, line in legend), default=0)
         pairs = [(x, y) for s in self.series for x, y in zip(s.xs, s.ys, strict=False)]
         for bxs, los, his, _ in self.bands:
             pairs += [(x, v) for x, lo, hi in zip(bxs, los, his, strict=False) for v in (lo, hi)]
@@ -125,7 +128,8 @@ class Chart:
             y0, y1 = y0 - 0.5, y1 + 0.5
         pad = 0.05 * (y1 - y0)
         y0, y1 = y0 - pad, y1 + pad
-        w, h = self.width, self.height
+        w, h = self.width, self.height + extra
+        mb += extra
 
         def px(x: float) -> float:
             return ml + (x - x0) / (x1 - x0) * (w - ml - mr)
@@ -142,8 +146,9 @@ class Chart:
             out.append(f'<line x1="{ml}" x2="{w - mr}" y1="{_n(py(t))}" y2="{_n(py(t))}" stroke="#e6e9ee"/>'
                        f'<text x="{ml - 4}" y="{_n(py(t) + 3.5)}" text-anchor="end" fill="#555">'
                        f'{_label(t)}</text>')
-        for t in _ticks(x0, x1, 6):
-            out.append(f'<text x="{_n(px(t))}" y="{h - mb + 13}" text-anchor="middle" fill="#555">'
+        for t in _ticks(x0, x1, 6):  # a label centred on the right edge would stick out: ends there instead
+            x, anchor = (w - 2, "end") if px(t) + 4 * len(_label(t)) > w - 2 else (px(t), "middle")
+            out.append(f'<text x="{_n(x)}" y="{h - mb + 13}" text-anchor="{anchor}" fill="#555">'
                        f'{_label(t)}</text>')
         out.append(f'<rect x="{ml}" y="{mt}" width="{w - ml - mr}" height="{h - mt - mb}" fill="none" '
                    f'stroke="#c5cbd3"/>')
@@ -162,17 +167,34 @@ class Chart:
             for d in _paths(s, px, py):
                 dash = f' stroke-dasharray="{s.dash}"' if s.dash else ""
                 out.append(f'<path d="{d}" fill="none" stroke="{s.color}" stroke-width="{s.width}"{dash}/>')
-        lx: float = ml + 6
-        for s in self.series:  # legend along the bottom
+        for s, (lx, row) in zip(self.series, legend, strict=True):  # legend along the bottom
             dash = f' stroke-dasharray="{s.dash}"' if s.dash else ""
-            out.append(f'<line x1="{lx}" x2="{lx + 16}" y1="{h - 7}" y2="{h - 7}" stroke="{s.color}" '
-                       f'stroke-width="2"{dash}/><text x="{lx + 20}" y="{h - 3}">{escape(s.label)}</text>')
-            lx += 34 + 6.5 * len(s.label)
+            y = h - extra + 16 * row
+            out.append(f'<line x1="{_n(lx)}" x2="{_n(lx + 16)}" y1="{y - 7}" y2="{y - 7}" '
+                       f'stroke="{s.color}" stroke-width="2"{dash}/>'
+                       f'<text x="{_n(lx + 20)}" y="{y - 3}">{escape(s.label)}</text>')
         if self.x_label:  # in the corner under the y labels, clear of the ticks and the legend
             out.append(f'<text x="{ml - 10}" y="{h - mb + 13}" text-anchor="end" fill="#555">'
                        f'{escape(self.x_label)}</text>')
         out.append("</svg>")
         return Markup("".join(out))
+
+
+LEGEND_CHAR = 7.0  # px per character of an 11 px legend label, generously
+
+
+def _legend_lines(labels: Sequence[str], left: float, right: float) -> list[tuple[float, int]]:
+    """(x, line) of each legend entry: left to right, a new line where an entry would pass `right` (the
+    week-6 legend "u_fw x, u_fw y, u_fw_t x..." ran off the chart)."""
+    out: list[tuple[float, int]] = []
+    lx, line = left, 0
+    for label in labels:
+        room = 20 + LEGEND_CHAR * len(label)
+        if lx > left and lx + room > right:
+            lx, line = left, line + 1
+        out.append((lx, line))
+        lx += room + 14
+    return out
 
 
 def _paths(s: Series, px, py) -> list[str]:

@@ -121,7 +121,8 @@ def bwrap_works() -> tuple[bool, str]:
     except (OSError, subprocess.TimeoutExpired) as exc:
         return False, f"bubblewrap failed to start: {exc}"
     if done.returncode != 0:
-        return False, "bubblewrap cannot create a sandbox here: " + done.stderr.decode(errors="replace")[:300]
+        why = done.stderr.decode(errors="replace")[:300].strip()
+        return False, f"bubblewrap cannot create a sandbox here: {why}"
     return True, ""
 
 
@@ -292,19 +293,23 @@ def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int, li
     return WorkerPlan(SUBPROCESS, argv, env, uid, describe(SUBPROCESS), str(submission), config)
 
 
-def describe(mode: str) -> str:
+def describe(mode: str, official: bool = False) -> str:
     """One or two sentences on what holds in `mode` on this machine, for the result and the report; it
-    starts "local check only: ..." when the system lacks part of the sandbox (capabilities.missing)."""
+    starts "local check only: ..." when the system lacks part of the sandbox (capabilities.missing), or
+    capabilities.OFFICIAL_PARTIAL when that system is a platform's official grading."""
     if mode == BWRAP:
         return NOTES[BWRAP]
-    from grader.sandbox.capabilities import local_only_note, missing
+    from grader.sandbox.capabilities import local_only_note, missing, official_note
 
-    items = missing(*bwrap_works())
-    details = _describe_subprocess()
-    return f"{local_only_note(items)} In detail: {details[0].lower()}{details[1:]}" if items else details
+    items = missing(*bwrap_works(), official=official)
+    details = _describe_subprocess(official)
+    if not items:
+        return details
+    first = official_note(items) if official else local_only_note(items)
+    return f"{first} In detail: {details[0].lower()}{details[1:]}"
 
 
-def _describe_subprocess() -> str:
+def _describe_subprocess(official: bool = False) -> str:
     from grader.inside.seccomp import available
     from grader.sandbox.capabilities import has_module
 
@@ -314,6 +319,10 @@ def _describe_subprocess() -> str:
     cannot = ("Files it writes anywhere its user can write and the System V / POSIX IPC objects it "
               "creates outlive the grading: nothing tells them apart from yours, so none are removed.")
     if not is_root():
+        if official:  # a platform that runs its grader as a user without privileges: nothing to drop to
+            return note(net=net, uid=" under the grader's own user (not root here, so no uid to drop to): it "
+                        "could signal the grader and write where the grader can", reads=_what_it_reads(False),
+                        leftovers=cannot)
         return note(net=net, uid=" under your own user, so it could also signal the grader, write where you "
                     "can write and leave processes behind: treat this result as advisory",
                     reads=_what_it_reads(own_uid=False), leftovers=cannot)

@@ -80,11 +80,24 @@ class CappedOutput:
     def text(self) -> str:
         """What the student printed, truncated, with a note of how much was dropped."""
         with self._lock:
-            text = self._kept.decode("utf-8", errors="replace")
-            dropped = self.total - len(self._kept)
-        if dropped:
-            text += f"\n[... {dropped} more bytes of output not kept]"
-        return text
+            kept, dropped = bytes(self._kept), self.total - len(self._kept)
+        return _described(kept, dropped)
+
+    def take(self) -> str:
+        """`text()`, and start afresh: what is read from now on is kept in a new `cap` bytes, apart from
+        what this returned (the grader splits output printed during visible and hidden checks so)."""
+        with self._lock:
+            kept, dropped = bytes(self._kept), self.total - len(self._kept)
+            self._kept.clear()
+            self.total = 0
+        return _described(kept, dropped)
+
+
+def _described(kept: bytes, dropped: int) -> str:
+    text = kept.decode("utf-8", errors="replace")
+    if dropped:
+        text += f"\n[... {dropped} more bytes of output not kept]"
+    return text
 
 
 def _pending(fd: int) -> int:

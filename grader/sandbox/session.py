@@ -55,7 +55,7 @@ class StudentSession:
     def __init__(self, week: int, spliced_dir: Path | str, limits: Limits | None = None, *,
                  sandbox: str = "auto", probes: str = "grader.inside.probes", probes_file: Path | None = None,
                  extra_paths: tuple[str, ...] = (),
-                 loader: str = "simiam.course.loader:load_submission") -> None:
+                 loader: str = "simiam.course.loader:load_submission", official: bool = False) -> None:
         self.week = int(week)
         self.spliced_dir = Path(spliced_dir).resolve()
         self.limits = limits or Limits()
@@ -70,7 +70,8 @@ class StudentSession:
         self._outputs: list[CappedText] = []
         self._load: dict | None = None
         self._load_death: WorkerDied | None = None
-        self.isolation_note = self._base_note = isolation.describe(self.isolation)
+        # official: a platform's official grading, whose note never says "local check only"
+        self.isolation_note = self._base_note = isolation.describe(self.isolation, official=official)
         self.numerics: dict[str, object] = numerics.checked(None)  # what the worker reports when it starts
         self._spawned: float | None = None  # when a worker was spawned that is not waited for yet
         self.seconds_used = 0.0      # wall time of calls, counted against limits.total_seconds
@@ -143,6 +144,17 @@ class StudentSession:
         if self._worker is not None:
             self._worker.output.settle()
             texts.append(self._worker.output.text())
+        return "\n".join(t for t in texts if t)
+
+    def take_output(self) -> str:
+        """`output()`, and start afresh: what the student's code prints from now on is not in what this
+        returned, nor in any later `output()` before the next take. The grader takes the output of the
+        visible checks before a hidden check runs, and each hidden check's after it (grader.grading)."""
+        texts = [o.text() for o in self._outputs]
+        self._outputs.clear()
+        if self._worker is not None:
+            self._worker.output.settle()
+            texts.append(self._worker.output.take())
         return "\n".join(t for t in texts if t)
 
     def close(self) -> None:

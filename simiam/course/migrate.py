@@ -31,6 +31,15 @@ from simiam.course.weeks import get_week, previous_week, week_numbers
 EXIT_OK, EXIT_REFUSED, EXIT_USAGE = 0, 1, 2
 
 
+def _shown(path: str | Path) -> str:
+    """A path as the student would type it: relative to the current folder when under it (the absolute
+    paths of a resolved week folder made every line long)."""
+    try:
+        return Path(path).relative_to(Path.cwd()).as_posix() or "."
+    except ValueError:
+        return str(path)
+
+
 @dataclass
 class BlockMove:
     """What happened to one block of this week's folder."""
@@ -43,7 +52,7 @@ class BlockMove:
 
     def __str__(self) -> str:
         verb = "moved" if self.moved else "kept "
-        where = f"{self.file}:{self.line}" if self.line else self.file
+        where = f"{_shown(self.file)}:{self.line}" if self.line else _shown(self.file)
         return f"  {verb}  {where}  {self.block}: {self.why}"
 
 
@@ -70,15 +79,20 @@ class Migration:
         return bool(self.errors)
 
     def report(self, dry_run: bool = False) -> str:
-        head = f"simiam migrate week{self.week}: from {self.source} into {self.target}"
+        head = f"simiam migrate week{self.week}: from {_shown(self.source)} into {_shown(self.target)}"
         if self.refused:
             lines = [head, "Refused: nothing was changed. Fix these and run it again:"]
             return "\n".join(lines + [f"  {e}" for e in self.errors])
-        lines = [head, *map(str, self.moves), *(f"  note   {n}" for n in self.notes)]
         moved = sorted(self.texts)
-        if not moved:
-            lines.append("Nothing to carry: this week's folder is left as it is.")
-        elif dry_run:
+        if not moved:  # one line per reason, not one per block: nothing here asks for a look at each file
+            why: dict[str, list[str]] = {}
+            for m in self.moves:
+                why.setdefault(m.why, []).append(m.block)
+            kept = [f"  kept   {reason}: {', '.join(blocks)}" for reason, blocks in why.items()]
+            return "\n".join([head, *kept, *(f"  note   {n}" for n in self.notes),
+                              "Nothing to carry: this week's folder is left as it is."])
+        lines = [head, *map(str, self.moves), *(f"  note   {n}" for n in self.notes)]
+        if dry_run:
             lines.append(f"Dry run: would write {', '.join(moved)}; nothing was changed.")
         else:
             lines.append(f"Wrote {', '.join(self.written)}.")

@@ -23,6 +23,7 @@ from markupsafe import Markup
 from simiam import safe_write
 from simiam.robot.quickbot import IR_MOUNTS
 from simiam.signals import WEEKS_1_TO_4, declared, from_headers, headers
+from simiam.viewer.state_colours import state_colors
 
 TRACE_FORMAT = "simiam-trace/1"
 
@@ -189,6 +190,8 @@ def pack_trace(trace: dict) -> dict:
     if not (isinstance(goal, (list, tuple)) and len(goal) >= 2):
         goal = None
     obstacles = [poly(p) for p in world.get("obstacles", [])]
+    states = _states(steps.get("state") or [], n)
+    labels = [run for sig in signals if sig["kind"] == "label" for run in signal_data[sig["name"]]]
     return {
         "week": trace.get("week"), "dt": _num(trace.get("dt"), 6) or 0.033, "seconds": trace.get("seconds"),
         "world": {"name": str(world.get("name", "")), "obstacles": obstacles},
@@ -199,7 +202,8 @@ def pack_trace(trace: dict) -> dict:
         "start": trace.get("start"),
         "goal": [_num(goal[0], 5), _num(goal[1], 5)] if goal else None,
         "collision": collision,
-        "states": _states(steps.get("state") or [], n),
+        "states": states,
+        "state_colors": state_colors(run[1] for run in states + labels),  # as the report colours them
         "steps": cols,
         "signals": signals,        # the declared signals that have values, in order (name, kind, unit)
         "signal_data": signal_data,

@@ -11,7 +11,7 @@ import batch_fake_grader
 
 from grader.batch.exports import gradebook_csv, gradescope_result, safe_cell
 from grader.batch.progress import Progress, format_duration
-from grader.batch.summary import check_stats, graded_scores, replay_links, summary_html
+from grader.batch.summary import check_stats, graded_scores, replay_links, shortened, summary_html
 
 TASK = {"week": 3, "seed": 1, "student": "x"}
 
@@ -73,7 +73,7 @@ def test_summary_links_each_run_replay_once_and_marks_failed_runs() -> None:
     results["bob"]["checks"].append({"id": "week3.pid.settle_time", "status": "passed", "points": 1.0,
                                      "max_points": 1.0, "details": {"traces": runs[1:]}})
     [group] = replay_links(results["bob"], "b%20b.html")
-    assert group["name"] == "reach_goals" and [(r["href"], r["text"]) for r in group["runs"]] == [
+    assert group["name"] == "go_to_goal.reach_goals" and [(r["href"], r["text"]) for r in group["runs"]] == [
         ("b%20b.html#run-week3.go_to_goal.reach_goals", "1"),
         ("b%20b.html#run-week3.go_to_goal.reach_goals_2", "2")]
     assert group["runs"][1]["title"] == "week3.fake.b: failed; week3.pid.settle_time: passed"
@@ -84,6 +84,35 @@ def test_summary_links_each_run_replay_once_and_marks_failed_runs() -> None:
     page = summary_html(results, {sid: sid for sid in results}, {"week": 3, "seed": 1, "grader": "g"})
     assert 'href="bob.html#run-week3.go_to_goal.reach_goals_2"' in page and "<th>replays</th>" in page
     assert replay_links(results["alice"], "alice.html") == []      # no scenario run kept: no link
+
+
+def test_summary_tells_blending_from_switching_and_colours_each_run_by_its_own_record() -> None:
+    """The summary labelled week 5's replays "reach_goal 1 2 1 2" (blending and switching runs could not
+    be told apart) and drew a run that reached its goal red because the other run of its check missed."""
+    def check(part: str, reached: list[bool]) -> dict:
+        cid = f"week5.{part}.reach_goal"
+        keys = [cid] + [f"{cid}#{k + 1}" for k in range(1, len(reached))]
+        return {"id": cid, "status": "passed" if all(reached) else "failed", "points": 0.0, "max_points": 1.0,
+                "details": {"traces": keys, "runs": [{"reached": r, "collided": False, "problem": ""}
+                                                     for r in reached]}}
+
+    result = {"checks": [check("blending", [True, True]), check("switching", [True, False])]}
+    groups = replay_links(result, "s.html")
+    assert [g["name"] for g in groups] == ["blending.reach_goal", "switching.reach_goal"]
+    assert [[r["failed"] for r in g["runs"]] for g in groups] == [[False, False], [False, True]]
+    assert groups[1]["runs"][0]["title"] == "week5.switching.reach_goal: failed"  # the check's verdict stays
+
+
+def test_summary_cuts_a_long_message_at_a_word_and_says_so() -> None:
+    """The summary cut messages at 300 characters mid-word, without a mark."""
+    message = "your supervisor raised an error " * 20
+    cut = shortened(message.strip(), 300)
+    assert cut.endswith("…") and len(cut) <= 300
+    assert message.startswith(cut[:-1] + " ")  # whole words, then the mark
+    assert shortened("short enough", 300) == "short enough"
+    results = {"zed": {"week": 3, "status": "crashed", "score": 0.0, "checks": [], "message": message}}
+    page = summary_html(results, {"zed": "zed"}, {"week": 3, "seed": 1, "grader": "g"})
+    assert f"{cut}</td>" in page
 
 
 class Clock:

@@ -118,7 +118,7 @@ def test_unfilled_blocks_are_kept_as_shipped(tmp_path, capsys):
     before = snapshot(tmp_path / "w3")
     assert run("week3", "--from", tmp_path / "w2", "--to", tmp_path / "w3") == 0
     out = capsys.readouterr().out
-    assert "uni_to_diff: you had not filled it in week 2 (still the placeholder); shipped version kept" in out
+    assert "you had not filled it in week 2 (still the placeholder); shipped version kept: uni_to_diff" in out
     assert "Nothing to carry" in out
     assert snapshot(tmp_path / "w3") == before
 
@@ -314,6 +314,21 @@ def test_week1_into_week2_has_nothing_to_carry(tmp_path, capsys):
     before = snapshot(tmp_path / "w2")
     assert run("week2", "--from", tmp_path / "w1", "--to", tmp_path / "w2") == 0
     out = capsys.readouterr().out
-    assert out.count("new this week: yours to write") == 3
+    [line] = [ln for ln in out.splitlines() if "new this week: yours to write" in ln]  # one line, 3 blocks
+    assert line.count(", ") == 2
     assert "Nothing to carry" in out
     assert snapshot(tmp_path / "w2") == before
+
+
+def test_nothing_to_carry_is_said_in_a_few_short_lines(tmp_path, capsys, monkeypatch):
+    """With nothing to carry, migrate printed a line per block (13 for week 4), each with the absolute
+    path of the resolved week folder: now one line per reason, paths as typed from the current folder."""
+    for week in (3, 4):
+        shutil.copytree(ROOT / f"assignments/week{week}", tmp_path / f"week{week}")
+    monkeypatch.chdir(tmp_path)
+    assert run("week4", "--from", "week3") == 0
+    out = capsys.readouterr().out
+    lines = out.strip().splitlines()
+    assert lines[0] == "simiam migrate week4: from week3 into week4"
+    assert lines[-1].startswith("Nothing to carry")
+    assert len(lines) <= 6 and str(tmp_path) not in out

@@ -76,3 +76,28 @@ def test_a_missing_file_to_write_is_still_a_load_error(tmp_path: Path, capsys) -
     (folder / "go_to_goal.py").unlink()
     assert main(_args(folder, tmp_path / "out", seconds=0.5)) == 1
     assert "could not be loaded" in capsys.readouterr().err
+
+
+def test_an_error_at_the_first_step_is_said_first_and_not_contradicted(tmp_path: Path) -> None:
+    """A NameError at the first step: `simiam run` printed "0.00 s simulated, 0 steps ... the robot never
+    stopped" and only then the error. The error now comes first (in the terminal's order: one stream), and
+    the summary says the error stopped the robot."""
+    import shutil
+    import subprocess
+    import sys
+
+    folder = tmp_path / "week3"
+    shutil.copytree(Path(__file__).resolve().parents[2] / "solutions" / "week3", folder)
+    source = (folder / "go_to_goal.py").read_text().splitlines()
+    execute = next(i for i, t in enumerate(source) if "def execute(" in t)
+    at = next(i for i, t in enumerate(source) if i > execute and "# START CODE BLOCK" in t)
+    source.insert(at + 1, "        undefined_name_here  # NAME")  # inside a block: no warning comes first
+    (folder / "go_to_goal.py").write_text("\n".join(source) + "\n")
+    simiam = str(Path(sys.executable).parent / "simiam")
+    proc = subprocess.run([simiam, "run", "week3", str(folder), "--out", str(tmp_path / "runs")],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    assert proc.returncode == 1
+    lines = [ln for ln in proc.stdout.splitlines() if ln.strip()]
+    line = _line(folder, "# NAME")
+    assert lines[0].startswith(f"go_to_goal.py:{line}: NameError: name 'undefined_name_here' is not defined")
+    assert "never stopped" not in proc.stdout and "was stopped by your code's error at t = " in proc.stdout

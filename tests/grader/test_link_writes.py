@@ -202,6 +202,7 @@ ALLOWED = {
     ("grader/earlier.py", "reference_folder"): FRESH,
     ("grader/grading.py", "_splice"): FRESH,
     ("grader/platforms/bundle.py", "stage_common"): FRESH + ": the package's staging folder",
+    ("grader/platforms/coursera.py", "build"): FRESH + ", moved into an --out that must be empty",
     ("grader/platforms/gradescope.py", "build"): FRESH + " (the zip itself: write_zip)",
     ("grader/platforms/handout.py", "build_handout"): FRESH + ", renamed into place (the zip: write_zip)",
     ("grader/platforms/handout.py", "copy_handout"): FRESH + ": a package's staging folder",

@@ -20,7 +20,7 @@ COMMAND_LINES = sorted({ln.split("  #")[0].strip() for block in BLOCKS for ln in
 def test_the_doc_shows_every_instructor_command():
     assert {shlex.split(ln)[1] for ln in COMMAND_LINES} == set(COMMANDS)
     for heading in ("## 0. Check the course first", "## 1. Release a week", "## 2. Gradescope",
-                    "## 3. PrairieLearn"):
+                    "## 3. PrairieLearn", "## 4. Coursera"):
         assert heading in DOC
 
 

@@ -49,7 +49,7 @@ def test_the_state_timeline_shows_each_state_and_the_label_and_event_rows(trace)
 
 def test_signals_are_plotted_by_name(trace):
     svg = str(signals_svg(trace, ["d_prog", "switches", "u_gtg", "no_such_signal"]))
-    ElementTree.fromstring(svg)
+    ElementTree.fromstring(f"<div>{svg}</div>")  # one chart per unit
     for label in ("d_prog", "switches", "u_gtg x", "u_gtg y"):
         assert f">{label}</text>" in svg
     assert signals_svg(trace, ["no_such_signal", "fw_direction"]) is None  # nothing with a line to draw
@@ -110,8 +110,9 @@ def _huge_trace():
 def test_plots_survive_any_finite_value_and_say_what_is_off_the_chart():
     trace, n = _huge_trace()
     svg = str(signals_svg(trace, ["d_prog", "u_gtg", "switches"]))
-    ElementTree.fromstring(svg)
-    assert f"{3 * n} values off the chart (beyond ±1,000,000)" in svg
+    ElementTree.fromstring(f"<div>{svg}</div>")  # d_prog (m), u_gtg's x and y, switches (count)
+    assert f">{n} values off the chart (beyond ±1,000,000)" in svg  # d_prog's chart
+    assert f">{2 * n} values off the chart (beyond ±1,000,000)" in svg  # u_gtg's
     assert "inf" not in svg and "e+" not in svg and re.search(r'<path d="M[^"]+" fill="none"', svg)
     assert ">switches</text>" in svg
 
@@ -132,3 +133,35 @@ def test_the_axis_of_every_finite_value_overflows():
     wrong = _module("report_wrong_axis", DATA / "report_wrong/unbounded_axis.py")
     with pytest.raises(OverflowError):
         wrong.signals_svg(_huge_trace()[0], ["d_prog", "u_gtg"])
+
+
+def test_a_count_and_metres_never_share_an_axis(trace):
+    """"d_prog, switches (m)" drew a count of switches on a metres axis: one chart per unit, each titled
+    with its own."""
+    svg = str(signals_svg(trace, ["d_prog", "switches"]))
+    charts = ElementTree.fromstring(f"<div>{svg}</div>").findall("{http://www.w3.org/2000/svg}svg")
+    titles = [c.find("{http://www.w3.org/2000/svg}title").text for c in charts]
+    assert titles == ["d_prog (m)", "switches (count)"]
+
+
+def test_no_row_label_is_cut_and_the_legend_keeps_inside():
+    """The state chart cut "obstacle_cleared" to "bstacle_cleared" (its label ran off the left edge) and
+    the legend ran off the right one: the margin fits the longest label (at a generous width per
+    character) and the legend wraps. The browser test (test_report_pages_browser.py) measures the same
+    on the rendered page."""
+    from grader.report.signal_plots import _CHAR
+
+    trace = SWITCHING.switching_trace()
+    n = len(trace["steps"]["t"])
+    trace["signals"] = [*trace["signals"], {"name": "obstacle_cleared", "kind": "flag"}]
+    trace["steps"]["obstacle_cleared"] = [k % 7 == 0 for k in range(n)]
+    names = ["go_to_goal", "avoid_obstacles", "follow_wall", "sliding_left", "sliding_right", "stop"]
+    trace["steps"]["state"] = [names[k * len(names) // n] for k in range(n)]
+    svg = ElementTree.fromstring(str(states_svg(trace)))
+    width = float(svg.get("width"))
+    texts = svg.findall("{http://www.w3.org/2000/svg}text")
+    label = next(t for t in texts if t.text == "obstacle_cleared")
+    assert float(label.get("x")) - _CHAR * len("obstacle_cleared") >= 0
+    legend = [t for t in texts if t.text in names]
+    assert {t.text for t in legend} == set(names)
+    assert all(float(t.get("x")) + _CHAR * len(t.text) <= width for t in legend)

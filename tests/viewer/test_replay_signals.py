@@ -58,8 +58,9 @@ def timeline_painted(page) -> bool:
     page.evaluate("window.simiam.seek(2.9)")  # the time cursor away from the samples
     colours = page.evaluate("""() => {
         const c = document.querySelector('.plot.timeline canvas'), g = c.getContext('2d');
-        const w = c.getBoundingClientRect().width, tEnd = window.simiam.state().tEnd;
-        const at = t => Array.from(g.getImageData(Math.round(92 + t / tEnd * (w - 96)), 5, 1, 1).data);
+        const w = c.getBoundingClientRect().width, s = window.simiam.state(), tEnd = s.plotEnd;
+        const ml = s.labelMargins[0];  // the timeline is the first plot; its margin fits its row labels
+        const at = t => Array.from(g.getImageData(Math.round(ml + t / tEnd * (w - ml - 4)), 5, 1, 1).data);
         const hex = s => [1, 3, 5].map(k => parseInt(s.slice(k, k + 2), 16));
         return [at(0.5), hex(window.simiam.stateColor('go_to_goal')),
                 at(1.5), hex(window.simiam.stateColor('follow_wall'))];
@@ -70,7 +71,7 @@ def timeline_painted(page) -> bool:
 def test_overlays_timeline_and_plots(open_page, week5_like, tmp_path):
     page, errors = open_page(write_replay(week5_like, tmp_path / "week5.html"))
     page.evaluate("window.simiam.seek(1.5)")
-    assert page.evaluate("window.simiam.overlays()") == [
+    assert [{k: o[k] for k in ("name", "kind", "on")} for o in page.evaluate("window.simiam.overlays()")] == [
         {"name": "theta_g", "kind": "scalar", "on": False},  # a heading, off where vectors are drawn
         {"name": "u_gtg", "kind": "vector2", "on": True}, {"name": "u_ao", "kind": "vector2", "on": True}]
     titles = page.locator(".plot h2").all_inner_texts()

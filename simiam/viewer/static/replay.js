@@ -10,6 +10,17 @@
   var SIGS = D.signals || [], SD = D.signal_data || {};   // the run's declared debug signals, by name
   var N = S.t.length;
   var T0 = S.t[0], TEND = S.t[N - 1];
+  // A run that stops for good long before its end (week 5 at its goal after 9 s of a 60 s run): the plots
+  // end a little after the robot last moved, instead of squeezing the run into the first sixth of the axis.
+  var TPLOT = (function () {
+    var k = N - 1, eps = 1e-6;
+    while (k > 0 && Math.abs(S.x[k] - S.x[k - 1]) < eps && Math.abs(S.y[k] - S.y[k - 1]) < eps &&
+           Math.abs(S.theta[k] - S.theta[k - 1]) < eps) { k--; }
+    var last = D.states.length ? D.states[D.states.length - 1][0] : 0;   // nor did its state change since
+    var still = S.t[Math.max(k, last)];
+    if (still <= T0) { return TEND; }        // a robot that never moved: nothing to zoom on
+    return TEND - still > 0.25 * (TEND - T0) ? Math.min(TEND, still + Math.max(1, 0.1 * (still - T0))) : TEND;
+  })();
 
   var COLORS = {
     body: "#3d6fb6", bodyEdge: "#16325c", ghost: "rgba(120,120,130,0.55)", trail: "#3d6fb6",
@@ -17,15 +28,17 @@
     goal: "#1a7f37", obstacle: "#9aa3ae", obstacleEdge: "#5b6573", grid: "#eef0f3", crash: "#d1242f",
     series: ["#1f4fd1", "#d1242f", "#1a7f37", "#b35900", "#7a3db8", "#0f8b8d"],
     overlay: ["#d1242f", "#1a7f37", "#b35900", "#7a3db8", "#0f8b8d", "#c2185b", "#5d4037"],
-    states: ["#5b8def", "#e0823d", "#43a047", "#ab47bc", "#ef5350", "#26a69a", "#8d6e63", "#546e7a"]
+    unnamed: "#8a8f98"
   };
 
   // ---------- the debug signals the trace declares: vectors, points and headings are toggled overlays ----------
   var OVERLAYS = [];
   (function () {
-    var hasVector = SIGS.some(function (g) { return g.kind === "vector2"; }), colour = 0;
+    var hasVector = SIGS.some(function (g) { return g.kind === "vector2" && g.unit !== "coefficients"; }), colour = 0;
     SIGS.forEach(function (g) {
-      if (g.kind === "vector2" || g.kind === "points" || (g.kind === "scalar" && g.unit === "rad")) {
+      // two coefficients (unit "coefficients": week 7's sigma) are no vector in the world: plotted, not drawn
+      var world = g.kind === "vector2" && g.unit !== "coefficients";
+      if (world || g.kind === "points" || (g.kind === "scalar" && g.unit === "rad")) {
         var heading = g.kind === "scalar";
         OVERLAYS.push({ name: g.name, kind: g.kind, data: SD[g.name],
                         color: g.kind === "points" ? COLORS.cross : COLORS.overlay[colour++ % COLORS.overlay.length],
@@ -145,8 +158,14 @@
     for (var x = x0; x <= x1; x += step) { ctx.moveTo(sx(x), 0); ctx.lineTo(sx(x), st.H); }
     for (var y = y0; y <= y1; y += step) { ctx.moveTo(0, sy(y)); ctx.lineTo(st.W, sy(y)); }
     ctx.stroke();
-    // scale bar, bottom right
+    // scale bar, bottom right; lifted above the legend where the legend (wrapped on a narrow page) reaches it
     var len = step * st.zoom, bx = st.W - 16 - len, by = st.H - 14;
+    var legend = document.getElementById("legend");
+    if (legend) {
+      var cr = canvas.getBoundingClientRect(), lr = legend.getBoundingClientRect();
+      if (lr.width > 0 && lr.right - cr.left > bx - 24) { by = Math.min(by, lr.top - cr.top - 8); }
+    }
+    st.scaleBar = [bx - 20, by - 18, len + 40, 24];   // its box (label included), in canvas pixels
     ctx.strokeStyle = "#3a4450"; ctx.lineWidth = 2; ctx.beginPath();
     ctx.moveTo(bx, by); ctx.lineTo(bx + len, by); ctx.moveTo(bx, by - 4); ctx.lineTo(bx, by + 4);
     ctx.moveTo(bx + len, by - 4); ctx.lineTo(bx + len, by + 4); ctx.stroke();
@@ -284,6 +303,7 @@
   }
 
   // ---------- plots linked to the time cursor ----------
+  var LABEL_FONT = "10px system-ui, sans-serif";
   function wrap(a) { return a === null || a === undefined ? null : Math.atan2(Math.sin(a), Math.cos(a)); }
   function Plot(title, series, fixed, rows) {
     var box = document.createElement("div"), h = document.createElement("h2"), c = document.createElement("canvas");
@@ -304,12 +324,17 @@
     var pad = 0.06 * (hi - lo); lo -= pad; hi += pad;
     var self = { canvas: c, w: 1, h: 1, back: null };
     var ML = 38, MR = 4, MT = 4, MB = 14;
-    function px(t) { return ML + (t - T0) / Math.max(TEND - T0, 1e-9) * (self.w - ML - MR); }
+    function px(t) { return ML + (Math.min(t, TPLOT) - T0) / Math.max(TPLOT - T0, 1e-9) * (self.w - ML - MR); }
     function py(v) { return MT + (hi - v) / (hi - lo) * (self.h - MT - MB); }
-    if (rows) { ML = 92; c.style.height = (MT + MB + 16 * rows.length) + "px"; }
+    if (rows) {   // the row labels' margin fits the widest label ("obstacle_cleared" lost its "o" at 92 px)
+      var m = document.createElement("canvas").getContext("2d"); m.font = LABEL_FONT;
+      ML = 8 + Math.ceil(Math.max.apply(null, rows.map(function (row) { return m.measureText(rowLabel(row)).width; })));
+      c.style.height = (MT + MB + 16 * rows.length) + "px";
+    }
+    self.labelMargin = ML;
     self.tAt = function (clientX) {
       var r = c.getBoundingClientRect();
-      return T0 + (clientX - r.left - ML) / (self.w - ML - MR) * (TEND - T0);
+      return T0 + (clientX - r.left - ML) / (self.w - ML - MR) * (TPLOT - T0);
     };
     self.resize = function () {
       var r = c.getBoundingClientRect(), dpr = window.devicePixelRatio || 1;
@@ -318,18 +343,19 @@
       // draw the lines once into an offscreen canvas; each frame only blits it and adds the cursor
       var b = document.createElement("canvas"); b.width = c.width; b.height = c.height;
       var g = b.getContext("2d"); g.setTransform(dpr, 0, 0, dpr, 0, 0);
-      g.font = "10px system-ui, sans-serif"; g.fillStyle = "#5b6573"; g.strokeStyle = "#e3e7ec"; g.lineWidth = 1;
+      g.font = LABEL_FONT; g.fillStyle = "#5b6573"; g.strokeStyle = "#e3e7ec"; g.lineWidth = 1;
       if (rows) { paintRows(g, rows, px, ML, MT); }
       (rows ? [] : [lo + pad, (lo + hi) / 2, hi - pad]).forEach(function (v) {
         g.beginPath(); g.moveTo(ML, py(v)); g.lineTo(self.w - MR, py(v)); g.stroke();
         g.fillText(fmtNum(v), 1, py(v) + 3);
       });
       g.fillText(T0.toFixed(0) + " s", ML, self.h - 2);
-      g.textAlign = "right"; g.fillText(TEND.toFixed(1) + " s", self.w - MR, self.h - 2); g.textAlign = "left";
+      var end = TPLOT < TEND ? TPLOT.toFixed(1) + " s (still until " + TEND.toFixed(0) + " s)" : TEND.toFixed(1) + " s";
+      g.textAlign = "right"; g.fillText(end, self.w - MR, self.h - 2); g.textAlign = "left";
       series.forEach(function (s) {
         g.strokeStyle = s.color; g.lineWidth = s.width || 1.3; g.setLineDash(s.dash || []); g.beginPath();
         var on = false;
-        for (var k = 0; k < N; k++) {
+        for (var k = 0; k < N && S.t[k] <= TPLOT; k++) {
           var v = s.ys[k];
           if (v === null || !isFinite(v)) { on = false; continue; }
           if (s.breakOnWrap && on && k > 0 && s.ys[k - 1] !== null && Math.abs(v - s.ys[k - 1]) > Math.PI) { on = false; }
@@ -365,10 +391,11 @@
   }
   // A timeline: a band per row, coloured per state or label value; an event row is marked where it is true.
   function Timeline(title, rows) { return Plot(title, [], null, rows); }
+  function rowLabel(row) { return visible(row.label).slice(0, 24); }
   function paintRows(g, rows, px, ML, MT) {
     rows.forEach(function (row, r) {
       var y = MT + 16 * r;
-      g.fillStyle = "#3a4450"; g.textAlign = "right"; g.fillText(visible(row.label).slice(0, 16), ML - 4, y + 11); g.textAlign = "left";
+      g.fillStyle = "#3a4450"; g.textAlign = "right"; g.fillText(rowLabel(row), ML - 4, y + 11); g.textAlign = "left";
       if (row.runs) {
         row.runs.forEach(function (run, j) {
           var k0 = run[0], k1 = j + 1 < row.runs.length ? row.runs[j + 1][0] : N - 1;
@@ -387,10 +414,8 @@
   function fmtNum(v) { var a = Math.abs(v); return a >= 10 ? v.toFixed(0) : a >= 1 ? v.toFixed(1) : v.toFixed(2); }
 
   var plots = [];
-  function stateColor(name) {        // the same state name gets the same colour on every page
-    var h = 0;
-    for (var k = 0; k < name.length; k++) { h = (h * 31 + name.charCodeAt(k)) % 1000003; }
-    return COLORS.states[h % COLORS.states.length];
+  function stateColor(name) {        // the report's colour of the name (simiam.viewer.state_colours), sent in the data
+    return (D.state_colors || {})[name] || COLORS.unnamed;
   }
   (function buildPlots() {
     // the state timeline (which controller ran when), then one row per label signal and per event
@@ -424,13 +449,18 @@
     // every other number the run declared: one plot per unit (counts on their own)
     var byUnit = {}, units = [];
     SIGS.forEach(function (g) {
-      if (!((g.kind === "scalar" && g.unit !== "rad") || g.kind === "count")) { return; }
+      var pair = g.kind === "vector2" && g.unit === "coefficients";
+      if (!((g.kind === "scalar" && g.unit !== "rad") || g.kind === "count" || pair)) { return; }
       var unit = g.kind === "count" ? "count" : (g.unit || "");
       if (!byUnit[unit]) { byUnit[unit] = []; units.push(unit); }
       byUnit[unit].push(g.name);
     });
     units.forEach(function (unit) {
-      var series = byUnit[unit].map(function (name, j) { return { label: name, ys: SD[name], color: COLORS.series[j % COLORS.series.length] }; });
+      var series = [];
+      byUnit[unit].forEach(function (name) {
+        var d = SD[name], parts = d && d.x ? [[name + " 1", d.x], [name + " 2", d.y]] : [[name, d]];
+        parts.forEach(function (p) { series.push({ label: p[0], ys: p[1], color: COLORS.series[series.length % COLORS.series.length] }); });
+      });
       plots.push(Plot(byUnit[unit].join(", ") + (unit ? " (" + unit + ")" : ""), series));
     });
   })();
@@ -615,7 +645,9 @@
       return { t: st.t, index: st.index, playing: st.playing, speed: st.speed, zoom: st.zoom,
                center: [st.cx, st.cy], following: st.following, tEnd: TEND, rows: N,
                robotScreenXY: [r.left + sx(q[0]), r.top + sy(q[1])],
-               canvasRect: [r.left, r.top, r.width, r.height], collisionLabel: st.crashLabel || null };
+               canvasRect: [r.left, r.top, r.width, r.height], collisionLabel: st.crashLabel || null,
+               scaleBar: st.scaleBar || null, plotEnd: TPLOT,
+               labelMargins: plots.map(function (p) { return p.labelMargin; }) };
     },
     play: function () { setPlaying(true); }, pause: function () { setPlaying(false); },
     seek: seek, stepBy: stepBy, home: function () { home(); render(); },
@@ -624,7 +656,8 @@
     setSpeed: function (v) { st.speed = v; speedSel.value = String(v); },
     worldToScreen: function (x, y) { var r = canvas.getBoundingClientRect(); return [r.left + sx(x), r.top + sy(y)]; },
     stateColor: stateColor,
-    overlays: function () { return OVERLAYS.map(function (o) { return { name: o.name, kind: o.kind, on: o.on }; }); },
+    signalRows: function () { return SIGS.filter(function (g) { return g.kind === "label" || g.kind === "flag"; }).map(function (g) { return g.name; }); },
+    overlays: function () { return OVERLAYS.map(function (o) { return { name: o.name, kind: o.kind, on: o.on, color: o.color }; }); },
     setOverlay: function (name, on) {
       OVERLAYS.forEach(function (o, j) {
         if (o.name === name) { o.on = on; document.querySelector("#legend input[data-overlay=\"" + j + "\"]").checked = on; }
