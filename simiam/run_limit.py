@@ -30,10 +30,14 @@ def _raise(_signum, _frame) -> None:
 
 @contextmanager
 def step_limit(seconds: float) -> Iterator[None]:
-    """Raise StepTimeout in the body once it has run `seconds` (no limit off the main thread or without
-    SIGALRM, e.g. on Windows)."""
-    if not hasattr(signal, "setitimer") or threading.current_thread() is not threading.main_thread():
+    """Raise StepTimeout in the body once it has run `seconds` (no limit off the main thread). Where the
+    system has no SIGALRM (Windows) a watchdog thread raises it instead (`_watchdog`)."""
+    if threading.current_thread() is not threading.main_thread():
         yield
+        return
+    if not hasattr(signal, "setitimer"):
+        with _watchdog(seconds):
+            yield
         return
     previous = signal.signal(signal.SIGALRM, _raise)
     signal.setitimer(signal.ITIMER_REAL, seconds, 0.5)
@@ -42,6 +46,47 @@ def step_limit(seconds: float) -> Iterator[None]:
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0, 0)
         signal.signal(signal.SIGALRM, previous)
+
+
+@contextmanager
+def _watchdog(seconds: float) -> Iterator[None]:
+    """StepTimeout raised in this thread by another once the body has run `seconds`, then every half
+    second until it ends (as the alarm repeats). CPython's PyThreadState_SetAsyncExc delivers it at the
+    next bytecode: an endless Python loop stops; a long sleep stops when it returns.
+
+    The exception may land anywhere in this thread, even in this function's own lines: `ended` (a plain
+    flag, set in one bytecode) is read and written only under `lock`, and a pending exception is dropped
+    under it, so once the `with lock` in `finally` has run, none can come."""
+    import ctypes
+
+    target = ctypes.c_ulong(threading.get_ident())
+    lock = threading.Lock()
+    ended = [False]
+    wake = threading.Event()  # only to end the watcher early; the decision is `ended`
+
+    def fire() -> None:
+        wait = seconds
+        while not wake.wait(wait):
+            with lock:
+                if ended[0]:
+                    return
+                ctypes.pythonapi.PyThreadState_SetAsyncExc(target, ctypes.py_object(StepTimeout))
+            wait = 0.5
+
+    watcher = threading.Thread(target=fire, name="simiam-step-limit", daemon=True)
+    try:
+        watcher.start()
+        yield
+    finally:
+        while True:
+            try:
+                with lock:
+                    ended[0] = True
+                    ctypes.pythonapi.PyThreadState_SetAsyncExc(target, None)  # drop one not yet raised
+                break
+            except StepTimeout:  # it landed here, before the flag was set: set it again
+                continue
+        wake.set()
 
 
 class LimitedBrain:

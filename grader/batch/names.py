@@ -14,6 +14,8 @@ import hashlib
 import re
 import unicodedata
 
+from grader.batch.windows_names import same_file_key
+
 
 class SubmissionRefused(Exception):
     """A submission that will not be graded, with the reason shown to the instructor and the student."""
@@ -84,14 +86,15 @@ def check_paths(paths: list[tuple[str, ...]] | list[str]) -> None:
         parts = tuple(entry.split("/")) if isinstance(entry, str) else entry
         rel = "/".join(parts)
         check_path(parts)
-        key = rel.casefold()
+        key = same_file_key(rel)  # Windows: case folded, trailing dots and spaces dropped
         if key in files or key in folders:
             raise SubmissionRefused(f"{shown(rel)!r} and {shown(files.get(key) or folders[key])!r} cannot "
-                                    f"both exist on disk (same name, or names that differ only by case)")
+                                    f"both exist on disk (same name, or names that differ only by case or "
+                                    f"by a trailing dot or space)")
         files[key] = rel
         for depth in range(1, len(parts)):
             folder = "/".join(parts[:depth])
-            fkey = folder.casefold()
+            fkey = same_file_key(folder)
             if fkey in files:
                 raise SubmissionRefused(f"{shown(files[fkey])!r} is a file and also a folder holding "
                                         f"{shown(rel)!r}; both cannot exist on disk")

@@ -41,6 +41,7 @@ from typing import Any
 
 from grader.batch.grading_process import NO_TASK
 from grader.batch.proctree import exit_reason, kill_tree
+from grader.sandbox.capabilities import is_root
 from grader.sandbox.leftovers import sweep_scratch
 from grader.sandbox.workdir import temp_folder
 
@@ -324,7 +325,7 @@ def _scratch_parent() -> Path:
     """Where the grading processes' temporary folders go: TMPDIR, or, as root, a shared temporary folder
     when TMPDIR is closed to other users, so that a plain-subprocess worker's uid can enter the copies made
     inside (grader.sandbox.workdir) and the sweep still finds everything a killed process left."""
-    return temp_folder(os.geteuid() == 0)
+    return temp_folder(is_root())
 
 
 def _alive(pid: int) -> bool:

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from grader.batch.names import MAX_DEPTH, check_path, check_paths, check_student_id, shown, undecodable
+from grader.batch.windows_names import leave_out
 from grader.batch.zips import JUNK_PARTS, Limits, SubmissionRefused, is_junk, read_zip
 from simiam.course.weeks import all_weeks
 
@@ -79,6 +80,8 @@ def read_submission(student: Student, limits: Limits | None = None, week: int | 
         skipped: list[str] = []
         raw = read_zip(student.path, limits) if student.kind == "zip" \
             else read_folder(student.path, limits, skipped)
+        left_out: list[str] = []  # names Windows cannot store (windows_names), each said in a note
+        raw = leave_out(raw, left_out)
         check_paths(list(raw))
         root, files = find_root(raw, week)
         if not files:
@@ -92,8 +95,8 @@ def read_submission(student: Student, limits: Limits | None = None, week: int | 
         return Submission(student, sha256=_hash_path(student.path),
                           refused=shown(f"the submission could not be read ({type(exc).__name__}: "
                                         f"{str(exc)[:300]})"))
-    return Submission(student, files=files, sha256=content_hash(files, skipped), root=root,
-                      notices=[skipped_note(name) for name in skipped])
+    return Submission(student, files=files, sha256=content_hash(files, skipped + left_out), root=root,
+                      notices=[skipped_note(name) for name in skipped] + left_out)
 
 
 def skipped_note(name: str) -> str:

@@ -54,7 +54,7 @@ def _die_with_parent(parent: int | None) -> None:
 
     try:
         ctypes.CDLL(None).prctl(1, int(signal.SIGKILL), 0, 0, 0)  # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):
+    except (OSError, AttributeError, TypeError):  # not Linux (Windows: no C library by name None)
         return
     if parent is not None and os.getppid() != parent:
         os._exit(70)  # the parent is already gone
@@ -91,9 +91,35 @@ def _bootstrap(config: dict) -> None:
                        "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"})
 
 
+def _stdio_channel(config: dict) -> None:
+    """The portable channel (grader.sandbox.channel): requests on stdin, answers on stdout. Both move to
+    private descriptors that no child process inherits; fd 0 becomes empty and fd 1 joins fd 2, the
+    captured output, so whatever the student prints can never pass for an answer's framing. The stack
+    dump's pipe, where the system has SIGUSR1, is passed as its own descriptor (config["fd_dump"])."""
+    fd_in, fd_out = os.dup(0), os.dup(1)
+    for fd in (fd_in, fd_out):
+        _binary(fd)
+    null = os.open(os.devnull, os.O_RDONLY)
+    os.dup2(null, 0)
+    os.close(null)
+    os.dup2(2, 1)
+    config.update(fd_in=fd_in, fd_out=fd_out)
+
+
+def _binary(fd: int) -> None:
+    """Windows opens standard descriptors in text mode (\n -> \r\n): JSON lines need bytes as written."""
+    try:
+        import msvcrt
+    except ImportError:
+        return
+    msvcrt.setmode(fd, os.O_BINARY)
+
+
 def main() -> None:
     config = json.loads(sys.argv[1])
     del sys.argv[1:]  # nothing secret is passed, but student code has no use for it either
+    if config.get("channel") == "stdio":
+        _stdio_channel(config)
     _bootstrap(config)
     from grader.inside.worker_loop import serve
 

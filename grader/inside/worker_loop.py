@@ -155,10 +155,11 @@ def serve(config: dict) -> None:
     that dump (it is sent before student code, so the student cannot forge it).
     """
     fd_in, fd_out = int(config["fd_in"]), int(config["fd_out"])
-    if config.get("fd_dump") is not None:
+    if config.get("fd_dump") is not None and hasattr(signal, "SIGUSR1"):  # Windows has neither
         faulthandler.register(signal.SIGUSR1, file=int(config["fd_dump"]), all_threads=True)
     worker = _Worker(config)
-    _send(fd_out, {"id": 0, "ok": True, "value": {"pid": os.getpid(), "uid": os.getuid(),
+    uid = getattr(os, "getuid", lambda: None)()
+    _send(fd_out, {"id": 0, "ok": True, "value": {"pid": os.getpid(), "uid": uid,
                                                   "thread": threading.get_ident(),
                                                   "seccomp": bool(config.get("seccomp")),
                                                   "refused_limits": config.get("refused_limits", []),

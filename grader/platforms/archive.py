@@ -11,6 +11,7 @@ from __future__ import annotations
 import zipfile
 from pathlib import Path
 
+from grader.batch.windows_names import problem
 from simiam import safe_write
 
 _EPOCH = (2014, 1, 1, 0, 0, 0)   # the course's first run; zip cannot store dates before 1980
@@ -20,6 +21,8 @@ def write_zip(path: Path, files: dict[str, bytes], modes: dict[str, int] | None 
     """Write `files` ({posix path inside the zip: bytes}) to `path`, each with mode 0644 unless `modes`
     names another (0o755 for scripts, 0o600 for what only the owner may read)."""
     modes = modes or {}
+    for name in files:  # checked before anything is written: a zip unpacked on Windows must mean the same
+        _check_entry(name)
     with safe_write.replacing(path) as stream, zipfile.ZipFile(stream, "w", zipfile.ZIP_DEFLATED) as archive:
         for name in sorted(files):
             info = zipfile.ZipInfo(name, _EPOCH)
@@ -28,3 +31,16 @@ def write_zip(path: Path, files: dict[str, bytes], modes: dict[str, int] | None 
             info.external_attr = (0o100000 | modes.get(name, 0o644)) << 16
             archive.writestr(info, files[name])
     return path
+
+
+def _check_entry(name: str) -> None:
+    """Refuse an entry name that would unpack differently on Windows: a backslash (a folder there, part of
+    the name elsewhere; what str() of a Windows path gives), an absolute or drive path, or a component
+    Windows cannot store (grader.batch.windows_names: `aux.py`, `week3.`). Our own names: a bug, not input."""
+    parts = name.split("/")
+    if "\\" in name or name.startswith("/") or ":" in parts[0] or "" in parts or ".." in parts:
+        raise ValueError(f"zip entry {name!r}: use a relative path with '/' between folders")
+    for part in parts:
+        why = problem(part)
+        if why:
+            raise ValueError(f"zip entry {name!r}: {part!r} {why}")

@@ -10,7 +10,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from grader.batch.names import check_paths
 from grader.batch.submissions import STUDENT_FILES, find_root, pack, read_folder, skipped_note, unpack
+from grader.batch.windows_names import leave_out
 from grader.batch.zips import SubmissionRefused, read_zip
 from simiam.course.weeks import get_week
 
@@ -20,7 +22,8 @@ __all__ = ["SubmissionRefused", "collect"]
 def collect(upload: Path, week: int, into: Path, notices: list[str] | None = None) -> Path:
     """Write the student's week files from the platform's upload folder `upload` into `into` (created)
     and return it. Raises SubmissionRefused with a reason the student can act on. A file the grader does
-    not use whose name is not UTF-8 is skipped and said in `notices`."""
+    not use whose name is not UTF-8, and any file whose name cannot be written on Windows, is skipped
+    and said in `notices`; names that only Windows or macOS would take for one file are refused."""
     if not upload.is_dir():
         raise SubmissionRefused("no submission was uploaded")
     skipped: list[str] = []
@@ -34,6 +37,11 @@ def collect(upload: Path, week: int, into: Path, notices: list[str] | None = Non
                                     "upload one zip, or the .py files themselves")
         if zips:
             files = read_zip(upload.joinpath(*zips[0].split("/")))
+    left_out: list[str] = []
+    files = leave_out(files, left_out)  # aux.py, go_to_goal.py. ...: not writable on Windows
+    if notices is not None:
+        notices.extend(left_out)
+    check_paths(list(files))  # two names Windows (or macOS) would take for one file
     _, files = find_root(files, week)
     wanted = {p: d for p, d in files.items() if "/" not in p}
     if not any(p in STUDENT_FILES for p in wanted):

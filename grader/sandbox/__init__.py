@@ -6,7 +6,8 @@
 
 Modules (the grader's side; what runs inside the worker is the package grader.inside): isolation
 (bubblewrap or plain subprocess, dedicated uid), exposed (what the worker can import), capabilities (what
-this system offers), runner (start, deadlines, kill the whole tree), output (capped capture of
+this system offers), runner (start, deadlines, kill the whole tree), channel (the same over standard pipes
+and threads, for every worker without bubblewrap: macOS, Windows, Linux without it), output (capped capture of
 stdout/stderr), limits (Limits), workdir (private copy of the spliced folder), reach (what the worker's uid
 can reach), session (StudentSession, RemoteBrain), validate (type checks on untrusted values), errors, stuck,
 leftovers, bench.

@@ -14,6 +14,7 @@ and points the course staff to docs/platforms.md.
 from __future__ import annotations
 
 import importlib
+import os
 import sys
 
 LOCAL_ONLY = "local check only"
@@ -27,6 +28,12 @@ def has_module(name: str) -> bool:
     except ImportError:
         return False
     return True
+
+
+def is_root() -> bool:
+    """True if this process runs as root (False where the system has no uids: Windows)."""
+    geteuid = getattr(os, "geteuid", None)
+    return geteuid is not None and geteuid() == 0
 
 
 def missing(bwrap_ok: bool, bwrap_why: str = "", official: bool = False) -> list[str]:

@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from grader.sandbox import reach
+from grader.sandbox.capabilities import is_root
 from grader.sandbox.exposed import WORKER, build_library, installed_copies
 from grader.sandbox.library import shared_library
 from simiam import numerics
@@ -113,7 +114,7 @@ def bwrap_works() -> tuple[bool, str]:
     if exe is None:
         return False, "bubblewrap (bwrap) is not installed"
     prefix = str(Path(sys.executable).resolve().parent.parent)
-    argv = [exe, *_bwrap_base(os.geteuid() == 0, 1 << 20), *_bind_args([sys.prefix, prefix]),
+    argv = [exe, *_bwrap_base(is_root(), 1 << 20), *_bind_args([sys.prefix, prefix]),
             "--", sys.executable, "-I", "-S", "-c", "pass"]
     try:
         done = subprocess.run(argv, capture_output=True, timeout=10)
@@ -171,7 +172,7 @@ def _mkdirs(path: str, made: set[str]) -> list[str]:
 def pick_uid() -> int | None:
     """A uid no process uses now, so that killing by uid can only hit this session's processes
     (None when the grader is not root and cannot switch uid, or no spare uid is mapped here)."""
-    if os.geteuid() != 0 or not os.path.isdir("/proc"):
+    if not is_root() or not os.path.isdir("/proc"):
         return None
     low, high = _uid_range()
     if high - low < 1000:
@@ -243,7 +244,13 @@ def clean_env() -> dict[str, str]:
     """The worker's whole environment: nothing inherited from the grader (no tokens, no paths) but the
     numeric environment simiam.numerics pins before the worker's numpy loads (one BLAS kernel, one thread,
     one SIMD level: the same wheel speeds from the same code on every CPU)."""
-    return {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8", **numerics.plan()}
+    env = {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8", **numerics.plan()}
+    if os.name == "nt":  # Windows' runtime needs its own folders to start Python, and a temp folder
+        env.update({k: os.environ[k] for k in WINDOWS_ENV if k in os.environ})
+    return env
+
+
+WINDOWS_ENV = ("SYSTEMROOT", "WINDIR", "TEMP", "TMP")  # folders of the system, not the user's secrets
 
 
 def worker_library(mode: str, beside: Path) -> Path:
@@ -262,7 +269,7 @@ def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int, li
     """Build the argv for one worker in `mode` ("bwrap" or "subprocess"). `config` is the worker's config;
     `library` the folder built by grader.sandbox.exposed.build_library (the only simiam and grader the
     worker can import); `uid` the dedicated uid (and gid) to drop to, when the grader runs as root."""
-    as_root = os.geteuid() == 0
+    as_root = is_root()
     python = [sys.executable, "-I", "-S", "-B"]
     env = clean_env()
     if mode == BWRAP:
@@ -311,7 +318,7 @@ def _describe_subprocess(official: bool = False) -> str:
     net = " with network sockets blocked by a seccomp filter" if available() else " with network access"
     cannot = ("Files it writes anywhere its user can write and the System V / POSIX IPC objects it "
               "creates outlive the grading: nothing tells them apart from yours, so none are removed.")
-    if os.geteuid() != 0:
+    if not is_root():
         if official:  # a platform that runs its grader as a user without privileges: nothing to drop to
             return note(net=net, uid=" under the grader's own user (not root here, so no uid to drop to): it "
                         "could signal the grader and write where the grader can", reads=_what_it_reads(False),

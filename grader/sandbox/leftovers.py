@@ -14,9 +14,10 @@ own, so nothing is removed: the isolation note says so.
 from __future__ import annotations
 
 import ctypes
-import os
 import shutil
 from pathlib import Path
+
+from grader.sandbox.capabilities import is_root
 
 UID_MARK = "uid"          # a WorkCopy's root records the dedicated uid of its workers in this file
 _IPC_RMID = 0
@@ -83,6 +84,6 @@ def recorded_uids(scratch: Path) -> list[int]:
 def sweep_scratch(scratch: Path) -> None:
     """After a grading process ended (or was killed): clean up after the uids of the workers it started
     and delete its whole temporary folder, student code included."""
-    for uid in recorded_uids(scratch) if os.geteuid() == 0 else []:
+    for uid in recorded_uids(scratch) if is_root() else []:
         remove_everything_of(uid)
     shutil.rmtree(scratch, ignore_errors=True)

@@ -30,13 +30,22 @@ class CappedOutput:
         self._thread.start()
 
     def _drain(self) -> None:
-        poller = select.poll()  # not select(): no FD_SETSIZE limit in a busy batch grader
-        poller.register(self._fd, select.POLLIN)
+        # poll(), not select(): no FD_SETSIZE limit in a busy batch grader. Where there is no poll()
+        # (Windows) the read blocks outside the lock; settle() cannot count the bytes in a pipe there
+        # anyway (no fcntl: the "local check only" note says printed output may be cut short).
+        poller = select.poll() if hasattr(select, "poll") else None
+        if poller is not None:
+            poller.register(self._fd, select.POLLIN)
         try:
             while True:
-                poller.poll()
-                with self._lock:  # held from read to append, so settle() sees every byte accounted
+                data = None
+                if poller is None:
                     data = os.read(self._fd, 1 << 16)
+                else:
+                    poller.poll()
+                with self._lock:  # held from read to append, so settle() sees every byte accounted
+                    if data is None:
+                        data = os.read(self._fd, 1 << 16)
                     if not data:
                         self._eof = True
                         break

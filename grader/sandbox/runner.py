@@ -1,6 +1,8 @@
 """One running worker: start it (per an isolation plan), exchange messages with deadlines, kill its tree.
 
-The grader talks to the worker over two pipes passed as extra file descriptors (never stdin/stdout/stderr).
+The grader talks to a bubblewrap worker over two pipes passed as extra file descriptors (never
+stdin/stdout/stderr); a worker without bubblewrap uses the portable channel (grader.sandbox.channel, a
+subclass), whose transport and tree kill work on every system.
 Every response must carry the id of the pending request, parse as strict JSON and stay within the bounds of
 one answer (grader.inside.answer_bounds: bytes, depth, values, text), checked before anything else reads
 it; anything else is a protocol violation and the worker is killed. A third pipe carries only stack dumps:
@@ -40,12 +42,15 @@ DUMP_IDLE_SECONDS = 0.02
 DUMP_PENDING_SECONDS = 2.0
 MAX_DUMP_BYTES = 64 * 1024
 
+# getattr: Windows has no SIGXCPU, SIGXFSZ or SIGKILL (this module is imported there too).
 _SIGNAL_MEANING: dict[int, str] = {
-    signal.SIGXCPU: "it used up its CPU time limit",
-    signal.SIGXFSZ: "it wrote a file larger than the limit",
-    signal.SIGKILL: "it was killed (time or memory limit)",
-    signal.SIGSEGV: "it crashed (segmentation fault)",
-    signal.SIGABRT: "it aborted",
+    number: meaning for number, meaning in (
+        (getattr(signal, "SIGXCPU", None), "it used up its CPU time limit"),
+        (getattr(signal, "SIGXFSZ", None), "it wrote a file larger than the limit"),
+        (getattr(signal, "SIGKILL", None), "it was killed (time or memory limit)"),
+        (signal.SIGSEGV, "it crashed (segmentation fault)"),
+        (signal.SIGABRT, "it aborted"),
+    ) if number is not None
 }
 
 
@@ -162,15 +167,21 @@ class WorkerProcess:
                 self.kill()
                 what = "the worker did not start" if op == "start" else "no answer"
                 raise StudentTimeout(f"{what} within the time limit")
-            if not self._answers.poll(max(0, int(left * 1000) + 1)):
+            data = self._read_answers(left)
+            if data is None:
                 continue
-            data = os.read(self._resp_r, 1 << 16)
             if not data:
                 self._die(self._exit_reason())
             try:
                 self._reader.feed(data)
             except ProtocolError as exc:
                 self._die(f"it broke the protocol ({exc})")
+
+    def _read_answers(self, seconds: float) -> bytes | None:
+        """What the worker wrote on the answer pipe within `seconds` (b"" at its end, None if nothing)."""
+        if not self._answers.poll(max(0, int(seconds * 1000) + 1)):
+            return None
+        return os.read(self._resp_r, 1 << 16)
 
     def _dump_stack(self) -> bytes:
         """Ask the worker where it is (SIGUSR1 -> faulthandler) and collect the dump; b"" if none came.
@@ -221,14 +232,7 @@ class WorkerProcess:
     def kill(self) -> None:
         """Kill the worker and every process it started; safe to call more than once."""
         if self.proc.poll() is None:
-            try:
-                os.killpg(self.proc.pid, signal.SIGKILL)
-            except (ProcessLookupError, PermissionError):
-                pass
-            try:
-                self.proc.kill()
-            except ProcessLookupError:
-                pass
+            self._kill_tree()
         if self.plan.uid is not None:
             kill_uid(self.plan.uid)
             if self.plan.mode == SUBPROCESS:
@@ -238,15 +242,29 @@ class WorkerProcess:
             self.proc.wait(timeout=5.0)
         except subprocess.TimeoutExpired:
             pass
+        self._close_channel()
+        self.output.join(1.0)
+        if self.dead is None:
+            self.dead = "it was stopped"
+
+    def _kill_tree(self) -> None:
+        """SIGKILL the worker's session (it was started in its own) and the worker itself."""
+        try:
+            os.killpg(self.proc.pid, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError):
+            pass
+        try:
+            self.proc.kill()
+        except ProcessLookupError:
+            pass
+
+    def _close_channel(self) -> None:
         for fd in (self._req_w, self._resp_r, self._dump_r):
             try:
                 os.close(fd)
             except OSError:
                 pass
         self._req_w = self._resp_r = self._dump_r = -1
-        self.output.join(1.0)
-        if self.dead is None:
-            self.dead = "it was stopped"
 
     def close(self) -> None:
         self.kill()

@@ -36,6 +36,7 @@ from grader.inside.caps import (
 )
 from grader.sandbox import isolation
 from grader.sandbox.capabilities import has_module, with_refused_limits
+from grader.sandbox.channel import PortableWorker
 from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeout, WorkerDied
 from grader.sandbox.limits import Limits
 from grader.sandbox.runner import RequestTooLarge, WorkerProcess
@@ -222,7 +223,9 @@ class StudentSession:
             tmp_bytes=self.limits.tmp_bytes, library=self._library, extra_paths=self._extra_paths,
             probes_file=self._probes_file)
         try:
-            self._worker = WorkerProcess(plan, self.limits.output_bytes)
+            # Without bubblewrap: the portable channel, the same on macOS, Windows and Linux (channel.py).
+            channel = WorkerProcess if plan.mode == isolation.BWRAP else PortableWorker
+            self._worker = channel(plan, self.limits.output_bytes)
         except OSError as exc:  # not the student's doing: the sandbox binary or interpreter cannot run
             raise SandboxUnavailable(f"the worker could not be started: {exc}") from None
         self.starts += 1

@@ -1,7 +1,7 @@
 """Where a week's folder is when the command line names none: one rule for `grade`, `simiam run` and
 `simiam migrate`.
 
-    1. the current folder, if it is named weekN (you are inside your week folder);
+    1. the current folder, if it is named weekN, in any case (you are inside your week folder);
     2. else ./weekN (you are in the folder that holds your week folders);
     3. else ./assignments/weekN (you are in the course checkout);
     4. else a clear message naming the three places looked at.
@@ -32,7 +32,7 @@ def default_week_folder(week: int, cwd: Path | None = None) -> Path:
     """The week-`week` folder by the rule above (relative to `cwd`, default the current folder)."""
     here = Path.cwd() if cwd is None else Path(cwd)
     name = f"week{int(week)}"
-    if here.name == name:
+    if here.name.casefold() == name:  # Windows and macOS keep "Week3" as typed but take it for week3
         return here
     for candidate in (here / name, here / "assignments" / name):
         if candidate.is_dir():

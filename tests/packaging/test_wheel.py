@@ -216,3 +216,29 @@ def test_the_wheel_holds_no_answers(wheel: Path) -> None:
         assert {"grader/reference.py", "grader/checks/expected/week2_odometry_course_test.json"} <= set(names)
         hits = search(((n, z.read(n).decode("utf-8", errors="replace")) for n in names), answers)
     assert hits == {}
+
+
+def test_the_entry_points_are_plain_console_scripts(wheel: Path) -> None:
+    """Issue 23: pip makes a console script an .exe launcher on Windows; a GUI script or any other kind of
+    entry point would not print to the student's terminal. The built metadata holds exactly the console
+    scripts pyproject.toml names, and each target takes an optional argv (the launcher calls it bare)."""
+    import configparser
+    import inspect
+    from importlib import import_module
+
+    tomllib = pytest.importorskip("tomllib")  # Python 3.11+
+
+    with zipfile.ZipFile(wheel) as archive:
+        (name,) = [n for n in archive.namelist() if n.endswith(".dist-info/entry_points.txt")]
+        text = archive.read(name).decode()
+    built = configparser.ConfigParser()
+    built.read_string(text)
+    declared = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]
+    assert built.sections() == ["console_scripts"]
+    assert dict(built["console_scripts"]) == declared["scripts"] == {"simiam": "simiam.cli:main",
+                                                                     "grade": "grader.cli:main"}
+    assert "gui-scripts" not in declared and "entry-points" not in declared
+    for target in declared["scripts"].values():
+        module, _, function = target.partition(":")
+        parameters = list(inspect.signature(getattr(import_module(module), function)).parameters.values())
+        assert [(p.name, p.default) for p in parameters] == [("argv", None)]

@@ -8,7 +8,8 @@ way its config's `lie` names (what a compromised worker could send on its channe
 - forged_id: the second answer with an id nobody asked for.
 
 Any other request gets an empty success (`load` an empty load report). Started by the grader's runner
-like the real worker: its last argument is the JSON config with the pipe descriptors.
+like the real worker: its last argument is the JSON config with the pipe descriptors (or, on the portable
+channel, "channel": "stdio": requests on stdin, answers on stdout).
 """
 
 import json
@@ -18,7 +19,11 @@ import sys
 
 def main() -> None:
     config = json.loads(sys.argv[-1])
-    fd_in, fd_out, lie = int(config["fd_in"]), int(config["fd_out"]), config["lie"]
+    lie = config["lie"]
+    if config.get("channel") == "stdio":  # the portable channel (grader.sandbox.channel): standard pipes
+        fd_in, fd_out = 0, 1
+    else:
+        fd_in, fd_out = int(config["fd_in"]), int(config["fd_out"])
 
     def line(message: dict) -> bytes:
         return json.dumps(message).encode() + b"\n"
