@@ -14,8 +14,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 from simiam.brain import Brain, BrainError, Command, ConstantBrain, Readings, validate_command
 from simiam.physics.robot_surfaces import RobotSurfaces
@@ -34,10 +33,10 @@ __all__ = ["Brain", "BrainError", "Command", "ConstantBrain", "Ending", "EndReas
 Pose = tuple[float, float, float]
 
 
-@dataclass(frozen=True)
-class StepRecord:
+class StepRecord(NamedTuple):
     """The state after one step. `vel_r`/`vel_l` are the limited wheel speeds set at this step (they move
-    the robot during the next step); `ir_raw`/`ir_range` are the values at the end of this step."""
+    the robot during the next step); `ir_raw`/`ir_range` are the values at the end of this step.
+    Immutable; a NamedTuple rather than a frozen dataclass, whose construction took a sixth of a step."""
 
     step: int
     t: float
