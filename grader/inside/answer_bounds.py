@@ -33,6 +33,9 @@ HELD_VALUES = 8 * MAX_VALUES   # what one request, or one property check, keeps 
 HELD_TEXT = 4 * MAX_TEXT
 
 
+_PLAIN = frozenset((float, bool, type(None)))  # values with nothing to check below them (int: its size)
+
+
 class OutOfBounds(ValueError):
     """A value beyond one of the bounds; the message says which, in words a student can read."""
 
@@ -66,6 +69,8 @@ def weigh(value: Any, max_depth: int = MAX_DEPTH, max_values: int = MAX_VALUES,
                         raise OutOfBounds("a dict whose keys are not strings")
                     todo.append((key, depth + 1))
                     todo.append((inner, depth + 1))
+            elif set(map(type, item)) <= _PLAIN:  # a row of numbers (most of a scenario's batch): counted
+                values += len(item)                 # at once, within the bound checked just above
             else:
                 todo.extend((inner, depth + 1) for inner in item)
         elif kind is int:
