@@ -13,6 +13,7 @@ from typing import Any, Protocol, TypedDict
 from simiam.robot.quickbot import IR_MOUNTS
 from simiam.signals import WEEKS_1_TO_4, Plan, Signal, clean_debug, declared, real
 
+_FLOAT = {float}
 STATE_CHARS = 80  # a state name (a student picks it; it is shown in the replay, the report and the terminal)
 
 
@@ -43,6 +44,12 @@ class Brain(Protocol):
     purpose: whatever a brain returns is checked by `validate_command` before anything uses it."""
 
     def step(self, readings: Readings) -> Any: ...
+
+
+def _estimate(est: Any) -> list[float]:
+    if not (isinstance(est, (list, tuple)) and len(est) == 3 and all(real(c) for c in est)):
+        raise BrainError(f"estimate must be three finite numbers (x, y, theta), got {est!r:.80}")
+    return [float(c) for c in est]
 
 
 class BrainError(Exception):
@@ -82,10 +89,11 @@ def validate_command(command: Any, signals: tuple[Signal, ...] = _DEFAULT, n_ir:
             raise BrainError(f"{key} must be a finite number (rad/s), got {val!r:.60}")
         out[key] = float(val)
     est = command.get("estimate")
-    if est is not None:
-        if not (isinstance(est, (list, tuple)) and len(est) == 3 and all(real(c) for c in est)):
-            raise BrainError(f"estimate must be three finite numbers (x, y, theta), got {est!r:.80}")
-        est = [float(c) for c in est]
+    if type(est) is list and len(est) == 3 and set(map(type, est)) == _FLOAT:  # the common case
+        total = est[0] + est[1] + est[2]
+        est = list(est) if total - total == 0.0 else _estimate(est)  # an overflowing sum: the long way
+    elif est is not None:
+        est = _estimate(est)
     out["estimate"] = est
     state = command.get("state")
     if state is not None and not isinstance(state, str):

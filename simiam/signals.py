@@ -145,10 +145,16 @@ _FLOAT = {float}
 
 
 def _scalar(x: Any, _n: int) -> float | None:
+    if type(x) is float:  # every step of a run: the common case without the calls below
+        return x if x - x == 0.0 else None
     return float(x) if real(x) else None
 
 
 def _vector2(p: Any, _n: int) -> list[float] | None:
+    if type(p) is list and len(p) == 2:  # the common case: two floats, one finiteness test for both
+        a, b = p
+        if type(a) is float and type(b) is float and (a + b) - (a + b) == 0.0:
+            return [a, b]
     if isinstance(p, (list, tuple)) and len(p) == 2 and real(p[0]) and real(p[1]):
         return [float(p[0]), float(p[1])]
     return None
