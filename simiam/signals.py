@@ -242,7 +242,23 @@ def _read_scalar(x: Any, _n: int) -> float | None:
     return _maybe(x)
 
 
+def _float_array(a: Any, ndim: int) -> bool:
+    """Whether `a` is exactly a numpy array of doubles with `ndim` dimensions (not a subclass: a student's
+    class may override anything), which `tolist` reads as the element-wise path below would, at once."""
+    kind = type(a)
+    return (kind.__name__ == "ndarray" and kind.__module__ == "numpy" and a.ndim == ndim
+            and a.dtype.char == "d")
+
+
+def _finite_rows(rows: list[list[float]]) -> bool:
+    total = sum(map(sum, rows))
+    return total - total == 0.0 or all(v - v == 0.0 for row in rows for v in row)  # a sum may overflow
+
+
 def _read_vector2(u: Any, _n: int) -> list[float] | None:
+    if _float_array(u, 1) and len(u) >= 2:  # most of week 5-7's vectors, every step
+        values = u[:2].tolist()
+        return values if _finite_rows([values]) else None
     try:
         values = [_maybe(u[i]) for i in range(2)]
     except (TypeError, IndexError, KeyError):
@@ -253,6 +269,9 @@ def _read_vector2(u: Any, _n: int) -> list[float] | None:
 
 def _read_points(p: Any, n: int) -> list[list[float]] | None:
     """The first two rows (x, y) of a 2xN or 3xN array, N columns each."""
+    if _float_array(p, 2) and p.shape[0] >= 2 and p.shape[1] >= n:  # the IR points, every step
+        rows = p[:2, :n].tolist()
+        return rows if _finite_rows(rows) else None
     try:
         rows = [[_maybe(p[r][i]) for i in range(n)] for r in range(2)]
     except (TypeError, IndexError, KeyError):

@@ -7,11 +7,13 @@ from __future__ import annotations
 import csv
 import importlib.util
 import json
+import math
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from simiam import signals
 from simiam.robot.quickbot import spec_for_week
 from simiam.signals import LABEL_CHARS, MAX_COUNT, SIGNALS, WEEKS_1_TO_4, clean_debug, declared, read_signals
 from simiam.simulator import Simulator
@@ -242,3 +244,60 @@ def test_week7_records_the_sigma_its_sliding_tests_solved() -> None:
     checked = [k for k, flag in enumerate(steps["sliding_left"]) if flag is not None]
     assert sigmas and all(len(s) == 2 for s in sigmas)
     assert checked and steps["sigma_left"][checked[0]] is not None
+
+
+# --- reading numpy arrays at once (issue 24): the same values as element by element -------------------
+
+def _elementwise_vector2(u):
+    """What _read_vector2 returned before its fast path for numpy arrays (kept as the reference)."""
+    try:
+        values = [signals._maybe(u[i]) for i in range(2)]
+    except (TypeError, IndexError, KeyError):
+        return None
+    got = [v for v in values if v is not None]
+    return got if len(got) == 2 else None
+
+
+def _elementwise_points(p, n):
+    try:
+        rows = [[signals._maybe(p[r][i]) for i in range(n)] for r in range(2)]
+    except (TypeError, IndexError, KeyError):
+        return None
+    got = [[v for v in row if v is not None] for row in rows]
+    return got if all(len(row) == n for row in got) else None
+
+
+def _arrays():
+    rng = np.random.default_rng(24)
+    for shape in [(2,), (3,), (1,), (0,), (2, 5), (3, 5), (3, 4), (3, 6), (1, 5), (3, 1)]:
+        for kind in ("plain", "nan", "inf", "huge", "float32", "int", "negative zero"):
+            a = rng.normal(size=shape)
+            if kind in ("nan", "inf") and a.size:
+                a.flat[rng.integers(a.size)] = np.nan if kind == "nan" else -np.inf
+            a = {"huge": a * 1e308, "float32": a.astype(np.float32), "int": (a * 10).astype(np.int64),
+                 "negative zero": a * -0.0}.get(kind, a)
+            yield f"{shape} {kind}", a
+
+
+def _read_differs() -> list[str]:
+    differs = []
+    with np.errstate(all="ignore"):  # NaN and inf casts and products are the point
+        for label, a in _arrays():
+            if signals._read_vector2(a, 0) != _elementwise_vector2(a):
+                differs.append(f"vector2 {label}")
+            for n in (4, 5, 6):
+                fast, slow = signals._read_points(a, n), _elementwise_points(a, n)
+                if fast != slow or (fast is not None and [[math.copysign(1, v) for v in r] for r in fast]
+                                    != [[math.copysign(1, v) for v in r] for r in slow]):
+                    differs.append(f"points {label} n={n}")
+    return differs
+
+
+def test_numpy_vectors_and_points_read_as_element_by_element():
+    assert _read_differs() == []
+
+
+def test_the_wrong_version_that_skips_the_finiteness_test_differs(monkeypatch):
+    monkeypatch.setattr(signals, "_finite_rows", lambda rows: True)
+    differs = _read_differs()
+    assert "points (2, 5) nan n=5" in differs and "vector2 (2,) inf" in differs
