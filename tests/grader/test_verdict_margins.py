@@ -42,6 +42,9 @@ FLIPPED = [
     "solutions/week7::week7.navigate.other_goals",
     "good_week7_manual_epsilon::week7.navigate.other_goals",
     "week7_sigma_singular_raises::week7.navigate.other_goals",
+    # found by the full matrix after issue 21 added it: its strict `<` is as chaotic as the reference; the
+    # hidden set now keeps only variants every kept week-7 version is decided on (hidden_week7.py, rule 3)
+    "week7_progress_strict::week7.navigate.other_goals",
 ]
 
 
