@@ -108,11 +108,10 @@ def _stdio_channel(config: dict) -> None:
 
 def _binary(fd: int) -> None:
     """Windows opens standard descriptors in text mode (\n -> \r\n): JSON lines need bytes as written."""
-    try:
+    if sys.platform == "win32":  # mypy knows msvcrt and O_BINARY there only
         import msvcrt
-    except ImportError:
-        return
-    msvcrt.setmode(fd, os.O_BINARY)
+
+        msvcrt.setmode(fd, os.O_BINARY)
 
 
 def main() -> None:

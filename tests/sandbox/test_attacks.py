@@ -143,10 +143,14 @@ def test_forged_files_and_detached_writers(open_session, shared_dir, mode):
 def test_monkeypatching_stays_inside_the_worker(open_one):
     session = open_one("monkeypatch")
     value = attack(session)
-    # The patched to_json mangled the answer inside the worker; what came back is still plain JSON,
-    # checked by the grader's own (unpatched) code.
-    with pytest.raises(validate.BadValue, match="a list of 2, expected a number"):
-        validate.as_float_list(value, 2, "uni_to_diff returned")
+    # The patched to_json can change only what the worker sends: a row of plain floats no longer goes
+    # through it (the honest pair arrives), anything it does go through arrives mangled, as plain JSON the
+    # grader's own (unpatched) code refuses.
+    honest = [(2 * 0.1 + 0.5 * 0.09925) / (2 * 0.0325), (2 * 0.1 - 0.5 * 0.09925) / (2 * 0.0325)]
+    if value != honest:
+        with pytest.raises(validate.BadValue, match="a list of 2, expected a number"):
+            validate.as_float_list(value, 2, "uni_to_diff returned")
+    assert validate.as_float_list(honest, 2, "uni_to_diff returned") == honest
     assert math.sqrt(4.0) == 2.0
     assert not numpy.allclose(1.0, 2.0)
     with pytest.raises(validate.BadValue):
