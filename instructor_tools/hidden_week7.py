@@ -7,7 +7,7 @@ or two where progress is made and the sliding test says no, so one last bit of a
 reference round the arena wall for the rest of the minute (issue 20: 11 of the first set's 33 variants,
 made at one kernel from one start, were missed by the reference or by the manual's progress rule under
 another kernel or from a start moved by 1e-9 m). A variant is a fair test only where that does not happen,
-so a candidate (a goal on a 0.15 m grid, the world turned by k quarter turns) is kept only if:
+so a candidate (a goal on a 0.15 m grid, the world turned by k eighths of a turn) is kept only if:
 
 1. the reference solution (solutions/week7) and the manual's progress rule (tests/data/wrong/
    good_week7_manual_epsilon.patch, a correct alternative) both bring the TRUE position within 0.05 m of the
@@ -193,7 +193,8 @@ def main() -> int:
     print(f"{len(first)} of {len(pool)} candidates pass at the official kernel from the declared start",
           flush=True)
     seen = judged_under(official, first, full=True)
-    kept = [(v, s["decided"]) for v, s in zip(first, seen, strict=True) if s["fair"] and s["decided"]]
+    kept = [(v, s["decided"]) for v, s in zip(first, seen, strict=True)
+            if s["fair"] and s["decided"] is not None]
     print(f"{len(kept)} of them from every nudged start, every kept version decided", flush=True)
     for kernel in others:
         seen = judged_under(kernel, [v for v, _ in kept], full=True)
