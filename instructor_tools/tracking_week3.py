@@ -21,8 +21,14 @@ import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from grader import reference as ref
-from grader.checks.week3 import EXCLUDED_FILE, OVERSHOOT_LIMIT, ROBOT_D_STOP, SETTLE_LIMIT, TRACKING_TURN
+from grader.checks.week3 import (
+    EXCLUDED_FILE,
+    OVERSHOOT_LIMIT,
+    ROBOT_D_STOP,
+    SETTLE_LIMIT,
+    TRACKING_TURN,
+    drawable,
+)
 from grader.platforms.wrong_versions import apply_mistake
 from grader.scenarios import settle_and_overshoot
 from simiam.control.local_brain import LocalBrain
@@ -43,7 +49,7 @@ def grid() -> list[tuple[float, float]]:
     for i in range(-110, 111):
         for j in range(-110, 111):
             g = (round(i / 100, 2), round(j / 100, 2))
-            if math.hypot(*g) >= 0.5 and TRACKING_TURN[0] <= abs(ref.bearing(*g)) <= TRACKING_TURN[1]:
+            if drawable(g, TRACKING_TURN):
                 out.append(g)
     return out
 

@@ -140,9 +140,14 @@ def seeded_goals(
     goals: list[tuple[float, float]] = []
     while len(goals) < n:
         g = (round(rng.uniform(-1.1, 1.1), 2), round(rng.uniform(-1.1, 1.1), 2))
-        if math.hypot(*g) >= 0.5 and turn[0] <= abs(ref.bearing(*g)) <= turn[1] and g not in excluded:
+        if drawable(g, turn) and g not in excluded:
             goals.append(g)
     return goals
+
+
+def drawable(goal: tuple[float, float], turn: tuple[float, float]) -> bool:
+    """At least 0.5 m away, a turn in `turn` (rad) from the start heading: a goal seeded_goals may give."""
+    return math.hypot(*goal) >= 0.5 and turn[0] <= abs(ref.bearing(*goal)) <= turn[1]
 
 
 @functools.cache
