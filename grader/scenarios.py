@@ -10,6 +10,7 @@ its trace so far.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -64,10 +65,13 @@ def run(
     goal: tuple[float, float] | None = None,
     goal_radius: float | None = None,
     session: Any = None,
+    stop_rule: Callable[[tuple[float, float, float]], Callable[[StepRecord], bool]] | None = None,
 ) -> Run:
     """Run the student's supervisor with `settings` for `seconds` (stop at a collision, or once the TRUE
-    position is within `goal_radius` of `goal`). `session`: another worker than ctx.session (e.g.
-    grader.earlier's, with the course's versions of earlier weeks' parts)."""
+    position is within `goal_radius` of `goal`, or once the check's own `stop_rule`, made from the run's
+    TRUE start pose (nudged, as the trace's first row), is true of a step's record: week 6's laps).
+    `session`: another worker than ctx.session (e.g. grader.earlier's, with the course's versions of
+    earlier weeks' parts)."""
     config = ctx.config
     world = world or load_world(config.world)
     start = nudged(start or world.start, ctx.start_nudge)
@@ -81,8 +85,10 @@ def run(
     except SandboxError as exc:
         result.problem, result.sandbox_error = _words(exc, 0.0), exc
         return result
-    until = None
+    until = None if stop_rule is None else stop_rule(start)
     if goal is not None and goal_radius is not None:
+        assert stop_rule is None, "a run stops at its goal or by its own rule, not both"
+
         def until(rec: StepRecord) -> bool:  # the TRUE position, never the student's estimate
             return math.dist(rec.pose[:2], goal) < goal_radius
     trace = sim.run(seconds, until=until, stuck=(StudentTimeout,))
@@ -92,7 +98,8 @@ def run(
     ending = trace.ending
     assert ending is not None  # run() always says how it ended
     if ending.reason is EndReason.UNTIL:
-        result.reached, result.t_goal = True, ending.t
+        if goal is not None:  # else the check's own rule ended the run (its judgement reads the trace)
+            result.reached, result.t_goal = True, ending.t
     elif ending.reason is EndReason.INVALID_COMMAND:
         result.problem = f"at t = {ending.t:.2f} s your supervisor gave an invalid command: {ending.message}"
     elif ending.broken and isinstance(ending.error, SandboxError):

@@ -19,7 +19,7 @@ import json
 import math
 from pathlib import Path
 
-from grader.checks.week6 import SECONDS, judge_laps, obstacle, run_settings
+from grader.checks.week6 import SECONDS, judge_laps, laps_done, obstacle, run_settings
 from grader.scenarios import min_clearance
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
@@ -44,7 +44,9 @@ def reference_run(direction: str, theta0: float, d_fw: float, folder: Path = ROO
     if not sub.ok:
         raise RuntimeError(f"{folder} does not load: {sub.errors[0]}")
     brain = LocalBrain(sub, week, run_settings(direction, theta0, d_fw))
-    trace = Simulator(world, brain, week.spec, dt=week.dt, start=(0.0, 0.0, theta0)).run(SECONDS)
+    start = (0.0, 0.0, theta0)
+    trace = Simulator(world, brain, week.spec, dt=week.dt, start=start).run(
+        SECONDS, until=laps_done(direction)(start))  # as the check: the run ends once the laps are done
     ok, why, figures = judge_laps(trace.steps, trace.collision, direction, d_fw, obstacle(world), week.dt)
     gap = 0.0 if trace.collision is not None else min_clearance(trace, world, week.spec)
     return ok, why, {**figures, "min_clearance": gap}

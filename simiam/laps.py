@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 Point = tuple[float, float]
 
@@ -77,6 +77,24 @@ def laps(xs: Sequence[float], ys: Sequence[float], gate: Gate) -> list[int]:
         count += gate.crossing((xs[k - 1], ys[k - 1]), (xs[k], ys[k]))
         out.append(count)
     return out
+
+
+class LapsDone:
+    """A run's stop rule: true once the net count through `gate` reaches `n`, fed the TRUE position after
+    each step (the simulator's `until`, called with each StepRecord). Counts as `laps` does on the run's
+    trace from `start`, so the step it stops at is the one where that list first reaches `n`: the original
+    test ended there too ("the loop breaks at that moment")."""
+
+    def __init__(self, gate: Gate, n: int, start: Point) -> None:
+        self.gate, self.n = gate, n
+        self.count = 0
+        self._last = (start[0], start[1])
+
+    def __call__(self, record: Any) -> bool:  # a simiam.simulator.StepRecord
+        here = (record.pose[0], record.pose[1])
+        self.count += self.gate.crossing(self._last, here)
+        self._last = here
+        return self.count >= self.n
 
 
 class LapCount(NamedTuple):

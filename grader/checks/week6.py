@@ -15,6 +15,7 @@ geometry), so the sensor check does not depend on that week either.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 from grader import earlier, scenarios
@@ -26,7 +27,7 @@ from grader.margins import CLEARANCE, Limit, Margins
 from grader.properties import run_property
 from grader.sentences import then
 from simiam.course.weeks import get_week
-from simiam.laps import Gate, laps
+from simiam.laps import Gate, LapsDone, laps
 from simiam.world import load_world
 
 FW = ("follow_wall.py",)
@@ -43,7 +44,7 @@ ALL = (
 )
 V = 0.15  # the original test's speed
 SECONDS = 90.0  # the original test's length
-LAPS = 2  # the original test: back at the start twice and off again
+LAPS = 2  # the original test: back at the start twice and off again, and the run ends there
 SETTLE = 10.0  # s: the distance to the wall is judged after the robot found the wall
 DISTANCE_TOL = 0.05  # m: the median distance to the obstacle may differ this much from d_fw
 # rad/s, the turning rate once the robot found the wall (grader.laps.turning_rate). Over every start heading,
@@ -408,6 +409,13 @@ def settings(ctx: Context) -> Outcome:
     return Outcome(1.0, f"fw_direction {direction!r}, d_fw {fmt(d_fw)} m", {"d_fw": d_fw})
 
 
+def laps_done(direction: str) -> Callable[[tuple[float, float, float]], LapsDone]:
+    """The lap runs' stop rule, from the run's true start: they end once LAPS laps are done, as the original
+    test did ("the loop breaks at that moment"), so a robot is judged on the laps it was asked for, not on
+    what it does after them (and a lap run costs about half its 90 s)."""
+    return lambda start: LapsDone(gate(direction), LAPS, start[:2])
+
+
 def run_settings(direction: str, theta0: float, d_fw: float | None) -> dict:
     """The supervisor settings of a lap run: v, the side, the start heading of the estimate (the original
     test set the true pose and the estimate alike) and, for a variant, d_fw (None: the student's own)."""
@@ -425,7 +433,8 @@ def judge_laps(
 ) -> tuple[bool, str, dict]:
     """Two laps through the gate, no collision, and once the robot found the wall (after the first SETTLE
     seconds) the median distance to `obstacle` (its polygons) within DISTANCE_TOL of d_fw and a turning
-    rate of at most MAX_TURNING: (passed, why, figures). `steps`: a trace's columns x, y, theta, t."""
+    rate of at most MAX_TURNING: (passed, why, figures). `steps`: a trace's columns x, y, theta, t, of a
+    run stopped by `laps_done` (the figures are of the run until the laps were done)."""
     xs, ys, thetas, ts = steps["x"], steps["y"], steps["theta"], steps["t"]
     counted = laps(xs, ys, gate(direction))
     done = max(counted)
@@ -466,7 +475,7 @@ def judge_laps(
         )
     return (
         True,
-        (f"{LAPS} laps in {t:.1f} s, no collision in {ts[-1]:g} s, about {fmt(median)} m from the obstacle"),
+        f"{LAPS} laps in {t:.1f} s without touching the obstacle, about {fmt(median)} m from it",
         figures,
     )
 
@@ -490,7 +499,8 @@ def _laps(
     ctx: Context, check_id: str, direction: str, theta0: float, d_fw: float | None, label: str
 ) -> tuple[bool, str, dict, scenarios.Run]:
     """One run of the original test 6.x: v, direction and the start heading (true pose and estimate) set,
-    d_fw the student's own (None) or the variant's; 90 s; judged by judge_laps."""
+    d_fw the student's own (None) or the variant's; until the laps are done (laps_done), at most 90 s;
+    judged by judge_laps."""
     if d_fw is None:
         answer = ctx.probe("wall_settings")
         d_fw = number(answer.get("d_fw") if isinstance(answer, dict) else None, "your d_fw")
@@ -499,7 +509,8 @@ def _laps(
         settings = run_settings(direction, theta0, d_fw)
     world = load_world(ctx.config.world)
     session, note = earlier.scenario_session(ctx)  # the course's versions of the earlier weeks' parts
-    r = scenarios.run(ctx, label, settings, SECONDS, world=world, start=(0.0, 0.0, theta0), session=session)
+    r = scenarios.run(ctx, label, settings, SECONDS, world=world, start=(0.0, 0.0, theta0), session=session,
+                      stop_rule=laps_done(direction))
     scenarios.keep(ctx, check_id, r)
     dt = ctx.config.dt
     ok, text, figures = judge_laps(r.trace.steps, r.collision, direction, d_fw, obstacle(world), dt)

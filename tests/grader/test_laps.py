@@ -12,7 +12,7 @@ import pytest
 from grader.checks.week6 import gate
 from grader.laps import distance_to, median_distance
 from simiam.course.weeks import get_week
-from simiam.laps import Gate, count_laps, laps
+from simiam.laps import Gate, LapsDone, count_laps, laps
 
 SQUARE = [[(-0.2, 0.2), (0.4, 0.2), (0.4, 0.4), (-0.2, 0.4)]]
 
@@ -120,3 +120,66 @@ def test_no_lap_is_no_lap_either_way():
 def test_a_gate_that_is_no_segment_is_refused(args, words):
     with pytest.raises(ValueError, match=words):
         Gate(*args)
+
+
+class _Record:
+    """What LapsDone reads of a simulator's StepRecord: the true pose after the step."""
+
+    def __init__(self, x: float, y: float) -> None:
+        self.pose = (x, y, 0.0)
+
+
+class _LapsDoneFromFirstStep(LapsDone):
+    """Wrong version kept: the count starts at the first step's position, not at the run's start, so a
+    robot that starts on the gate and backs off first is given a lap it has not driven."""
+
+    def __call__(self, record) -> bool:
+        if not hasattr(self, "_seen"):
+            self._seen = True
+            self._last = (record.pose[0], record.pose[1])
+            return False
+        return super().__call__(record)
+
+
+def _stop_index(rule: LapsDone, xs: list[float], ys: list[float]) -> int | None:
+    """The row of the trace at which a run stopped by `rule` ends (row 0 is the start, never fed)."""
+    for k in range(1, len(xs)):
+        if rule(_Record(xs[k], ys[k])):
+            return k
+    return None
+
+
+@pytest.mark.parametrize("shape", ["forward", "backed_off_first"])
+def test_a_lap_run_stops_where_the_count_first_reaches_two(shape: str) -> None:
+    """week6.laps_done ends a run at the step where the trace's own count first reaches LAPS, so the
+    judgement of the shortened trace sees exactly the laps it was asked for, and not one step more."""
+    xs, ys = circle(2.5)
+    if shape == "backed_off_first":  # from the start on the gate back across it, then round
+        xs, ys = [0.0, -0.01, 0.0] + xs[1:], [0.0, 0.0, 0.0] + ys[1:]
+    g = Gate(0.0, -1.0, 0.05, 1)
+    counted = laps(xs, ys, g)
+    assert max(counted) >= 2
+    assert _stop_index(LapsDone(g, 2, (xs[0], ys[0])), xs, ys) == counted.index(2)
+    if shape == "backed_off_first":  # the wrong version stops a lap early: it never saw the step back
+        wrong = _stop_index(_LapsDoneFromFirstStep(g, 2, (xs[0], ys[0])), xs, ys)
+        assert wrong is not None and wrong < counted.index(2)
+
+
+def test_week6_lap_runs_end_once_the_laps_are_done() -> None:
+    """The solution's visible lap run ends at the step its second lap is done (the original test's break),
+    well before the 90 s, and its trace counts exactly two laps."""
+    from wrong_submissions import ROOT
+
+    from grader.checks.week6 import LAPS, SECONDS
+    from grader.grading import grade_submission
+
+    traces: dict = {}
+    result = grade_submission(6, ROOT / "solutions" / "week6", seed=2014, only="week6.laps.left",
+                              traces=traces)
+    check = next(c for c in result["checks"] if c["id"] == "week6.laps.left")
+    steps = traces["week6.laps.left"]["steps"]
+    counted = laps(steps["x"], steps["y"], gate("left"))
+    assert check["status"] == "passed", check["message"]
+    assert counted[-1] == LAPS and counted.index(LAPS) == len(counted) - 1
+    assert steps["t"][-1] == check["details"]["t_laps"] < SECONDS - 20
+    assert traces["week6.laps.left"]["ending"]["reason"] == "until"
