@@ -1,13 +1,19 @@
 """The checks can fail: solutions score full marks, stubs score 0, and each wrong version loses exactly the
-checks aimed at its mistake while alternative correct versions keep full marks."""
+checks aimed at its mistake while alternative correct versions keep full marks. And the verdicts stay: every
+kept version and stub, hidden checks included, grades exactly as tests/data/verdicts/seed2014.json says
+(status and points of every check, seed 2014), the snapshot made before issue 24's speed work; a change of
+checks that changes a verdict says why and rewrites it (`python tests/grader/verdict_matrix.py --kernel
+Haswell --snapshot`)."""
 
 from __future__ import annotations
 
+import json
 import re
 from pathlib import Path
 
 import pytest
 from mistakes import DATA, read_mistake
+from verdict_matrix import SNAPSHOT
 from wrong_submissions import ROOT, build, week_of
 
 from grader.grading import grade_submission
@@ -19,8 +25,16 @@ EXPECTED_FAILURES = {p.stem: set(read_mistake(p).aims or ())
                      for p in sorted((DATA / "wrong").glob("*.patch"))}
 
 
+VERDICTS = json.loads(SNAPSHOT.read_text())["verdicts"]
+
+
 def _failed(result: dict) -> set[str]:
-    return {c["id"] for c in result["checks"] if c["status"] != "passed"}
+    return {c["id"] for c in result["checks"] if c["status"] != "passed" and c["visibility"] != "hidden"}
+
+
+def _verdicts(result: dict) -> dict[str, list]:
+    """{check id: [status, points]}, as the snapshot holds them."""
+    return {c["id"]: [c["status"], round(c["points"], 9)] for c in result["checks"]}
 
 
 # what the message of a lost check must say (the right reason, in words a student can act on)
@@ -64,15 +78,17 @@ MESSAGES = {
 
 @pytest.mark.parametrize("name", sorted(EXPECTED_FAILURES))
 def test_wrong_version_loses_exactly_its_checks(name: str, tmp_path: Path) -> None:
-    result = grade_submission(week_of(name), build(name, tmp_path), seed=2014)
+    result = grade_submission(week_of(name), build(name, tmp_path), seed=2014, hidden=True)
     assert result["status"] == "graded"
+    assert _verdicts(result) == VERDICTS[name]
     assert _failed(result) == EXPECTED_FAILURES[name]
-    lost = {c["id"] for c in result["checks"] if c["points"] < c["max_points"]}
+    visible = [c for c in result["checks"] if c["visibility"] != "hidden"]
+    lost = {c["id"] for c in visible if c["points"] < c["max_points"]}
     assert lost == EXPECTED_FAILURES[name]
     checks = {c["id"]: c for c in result["checks"]}
     for check_id, words in MESSAGES.get(name, {}).items():
         assert words in checks[check_id]["message"], checks[check_id]["message"]
-    for c in checks.values():
+    for c in visible:  # the hidden checks' words are tested with the hidden sets (test_hidden_*)
         if c["status"] == "passed":
             continue
         assert c["status"] == "failed", c  # never an error: a wrong answer is a failure with a reason
@@ -96,6 +112,7 @@ def test_solutions_score_full_marks_with_hidden_checks(week: int, seed: int) -> 
 def test_untouched_stubs_score_zero(week: int) -> None:
     result = grade_submission(week, ROOT / "assignments" / f"week{week}", seed=2014, hidden=True)
     assert result["status"] == "graded"
+    assert _verdicts(result) == VERDICTS[f"assignments/week{week}"]
     assert result["score"] == 0
     assert all(c["status"] != "passed" for c in result["checks"])
 
