@@ -73,3 +73,38 @@ def test_a_bundle_grades_week5_runs_with_its_handout(tmp_path, monkeypatch):
     runs = {c["id"]: c for c in result["checks"] if c["kind"] == "scenario"}
     assert runs and all(c["status"] == "passed" for c in runs.values()), runs
     assert all("Note" not in c["message"] for c in runs.values())
+
+
+@pytest.mark.parametrize("label, second_worker", [("solutions/week5", False), (MISTAKE, True)])
+def test_a_second_worker_only_where_the_earlier_blocks_differ_from_the_courses(tmp_path, monkeypatch, label,
+                                                                               second_worker):
+    """The course's earlier blocks in the student's files already (as the handout ships them): the runs use
+    the worker at hand, with the same code; a second sandbox start (~0.1 CPU-s) only where they differ."""
+    import grader.grading as grading
+
+    opened = []
+    real = grading._open_session
+    monkeypatch.setattr(grading, "_open_session", lambda job, folder, others: opened.append(folder)
+                        or real(job, folder, others))
+    folder = ROOT / label if "/" in label else build(label, tmp_path)
+    result = grade_submission(5, folder, seed=2014, only="week5.blending.reach_goal")
+    (check,) = result["checks"]
+    assert check["status"] == "passed" and "Note" not in check["message"], check["message"]
+    assert len(opened) == int(second_worker)
+
+
+def test_same_files_compares_names_and_bytes(tmp_path):
+    a, b = tmp_path / "a", tmp_path / "b"
+    for folder in (a, b):
+        folder.mkdir()
+        (folder / "x.py").write_text("x = 1\n")
+    assert earlier.same_files(a, b)
+    (b / "x.py").write_text("x = 2\n")
+    assert not earlier.same_files(a, b)  # other bytes
+    (b / "x.py").write_text("x = 1\n")
+    (b / "y.py").write_text("")
+    assert not earlier.same_files(a, b)  # a file more
+    (b / "y.py").unlink()
+    (b / "x.py").unlink()
+    (b / "x.py").symlink_to(a / "x.py")
+    assert not earlier.same_files(a, b)  # a link is not a file of the folder
