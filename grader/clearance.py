@@ -19,7 +19,7 @@ Box = tuple[float, float, float, float]  # xmin, xmax, ymin, ymax
 
 # A gap found this much (m) beyond the smallest one so far may be skipped: far above the rounding of the
 # bound (~1e-16 m) and far below anything measured, so the minimum found is bit-identical.
-_SLACK = 1e-9
+SLACK = 1e-9
 
 
 class Shape:
@@ -49,6 +49,56 @@ class Shape:
                             bx if bx > ax else ax, by if by < ay else ay, by if by > ay else ay))
             self._segments = out
         return self._segments
+
+
+def directions(shapes: Sequence[Shape], most: int = 4) -> list[tuple[float, float]]:
+    """Unit directions along which to bound the gaps (pose_bounds): the directions of the obstacles'
+    edges, the commonest first, at most `most` of them (an axis-aligned world has two, x and y; a world
+    turned by 45 degrees the two turned ones; any direction gives a true bound, these give tight ones)."""
+    count: dict[int, int] = {}
+    for shape in shapes:
+        for (ax, ay), (bx, by) in shape.edges:
+            if (ax, ay) != (bx, by):  # in thousandths of a radian: walls a hair off square count as square
+                mrad = round(math.atan2(by - ay, bx - ax) % math.pi * 1000) % round(math.pi * 1000)
+                count[mrad] = count.get(mrad, 0) + 1
+    ranked = sorted(count, key=lambda a: (-count[a], a))[:most] or [0, round(math.pi * 500)]
+    return [(math.cos(a / 1000), math.sin(a / 1000)) for a in ranked]
+
+
+def pose_bounds(plate: Sequence[Sequence[float]], poses: Sequence[Sequence[float]],
+                shapes: Sequence[Shape]) -> list[float]:
+    """Per pose (x, y, theta), a lower bound of the gap between the plate placed there and the nearest of
+    the shapes (negative where they may overlap): along each of a few directions (`directions`), how far
+    apart the shape's extent and that of the plate's own box turned by theta (which holds the placed
+    plate) lie. The plate's extent is widened by far more than the rounding of the placement and of these
+    sums (transform's fast_error), so that no pose is ever bounded above its gap as computed. Cheap (no
+    placement, no Shape): min_clearance measures only the poses whose bound can beat the smallest gap."""
+    bx, by = [float(p[0]) for p in plate], [float(p[1]) for p in plate]
+    cx, cy = (min(bx) + max(bx)) / 2, (min(by) + max(by)) / 2
+    hx, hy = (max(bx) - min(bx)) / 2, (max(by) - min(by)) / 2
+    reach = max(abs(v) for v in bx + by)
+    scale = max((abs(v) for shape in shapes for v in shape.box), default=0.0)
+    cos, sin = math.cos, math.sin
+    cs = [(cos(th), sin(th)) for _, _, th in poses]
+    centres = [(c * cx - s * cy + x, s * cx + c * cy + y, 2.0 ** -44 * (reach + abs(x) + abs(y) + scale))
+               for (x, y, _), (c, s) in zip(poses, cs, strict=True)]
+    per_shape: list[list[float]] = [[-math.inf] * len(poses) for _ in shapes]
+    for dx, dy in directions(shapes):
+        # the plate's extent along (dx, dy): its centre's projection -+ its half-width there
+        proj = [dx * px + dy * py for px, py, _ in centres]
+        half = [hx * abs(dx * c + dy * s) + hy * abs(dy * c - dx * s) + err
+                for (c, s), (_, _, err) in zip(cs, centres, strict=True)]
+        low = [p - h for p, h in zip(proj, half, strict=True)]
+        high = [p + h for p, h in zip(proj, half, strict=True)]
+        for k, shape in enumerate(shapes):
+            along = [dx * x + dy * y for x, y in shape.points]
+            lo, hi = min(along), max(along)
+            # the gap along this direction: the plate beyond the shape or short of it (negative: overlap);
+            # the gap between them is at least the largest of these over the directions (the conditional
+            # expressions are max(), three times faster)
+            per_shape[k] = [(a if a > g else g) if (a := u - hi) > (b := lo - v) else (b if b > g else g)
+                            for u, v, g in zip(low, high, per_shape[k], strict=True)]
+    return list(map(min, *per_shape)) if len(shapes) > 1 else per_shape[0]
 
 
 def box_gap(a: Box, b: Box) -> float:
@@ -89,13 +139,13 @@ def _edge_pairs_that_may_meet(a: Shape, b: Shape) -> list[tuple]:
 
 def _vertices_to_edges(points: list[Point], segments: list[tuple], best: float) -> float:
     """min(best, point_to_segment of every point against every segment), skipping the pairs that
-    cannot be nearer than the best so far (their box gap, a lower bound, exceeds it by _SLACK)."""
+    cannot be nearer than the best so far (their box gap, a lower bound, exceeds it by SLACK)."""
     sqrt = math.sqrt
     for px, py in points:
         for ax, ay, bx, by, dx, dy, len2, length, degenerate, x0, x1, y0, y1 in segments:
             ex = x0 - px if px < x0 else px - x1 if px > x1 else 0.0
             ey = y0 - py if py < y0 else py - y1 if py > y1 else 0.0
-            if (ex if ex > ey else ey) > best + _SLACK:
+            if (ex if ex > ey else ey) > best + SLACK:
                 continue
             # point_to_segment, inline (the same operations in the same order)
             if degenerate:
