@@ -11,6 +11,7 @@ from __future__ import annotations
 import base64
 import functools
 import hashlib
+import itertools
 import json
 import math
 from importlib import resources
@@ -53,19 +54,41 @@ def _num(v: Any, digits: int) -> float | None:
     return 0.0 if r == 0 else r  # no "-0.0" in the page
 
 
+# round(v, digits) converts through decimal text (~0.4 us a number; a report packs tens of thousands).
+# Scaled, floored and divided back it costs half that and gives the same float: the product v * 10**digits
+# is off the exact one by under _TIE while it stays below _FAST, so unless its fraction lies within _TIE of
+# one half it rounds to the integer the exact one rounds to, and that integer over 10**digits (both exact)
+# divides to the float nearest the decimal, which is what round() returns. Near a half, round() decides.
+# tests/viewer/test_replay_rounding.py compares them on millions of numbers, ties and near-ties included.
+_FAST, _TIE = 2.0 ** 33, 2.0 ** -19
+
+
 def _column(values: list, digits: int) -> list:
-    return [_num(v, digits) for v in values]
+    """_num of each value, finite floats (nearly every value) inline and without round()'s decimal text."""
+    scale = 10.0 ** digits
+    lo, hi = 0.5 - _TIE, 0.5 + _TIE
+    return [(0.0 if (r := (f + 1.0 if d > 0.5 else f) / scale) == 0 else r)
+            if type(v) is float and -_FAST < (y := v * scale) < _FAST
+            and not lo < (d := y - (f := y // 1.0)) < hi
+            else None if v is None else _num(v, digits) for v in values]
 
 
 def _split(rows: list, n: int, width: int, digits: int) -> list[list]:
     """[[a0..a4], ...] -> width columns; a missing or short row gives nulls."""
-    out: list[list] = [[] for _ in range(width)]
-    for k in range(n):
-        row = rows[k] if k < len(rows) else None
-        for j in range(width):
-            ok = isinstance(row, (list, tuple)) and len(row) > j
-            out[j].append(_num(row[j], digits) if ok and row is not None else None)
-    return out
+    nothing = (None,) * width
+    whole = [row if type(row) in (list, tuple) and len(row) >= width
+             else nothing if row is None else _padded(row, width) for row in rows[:n]]
+    whole += [nothing] * (n - len(whole))
+    if not n:
+        return [[] for _ in range(width)]
+    # by columns (zip transposes at C speed; a longer row's extra entries are left out, as row by row)
+    return [_column(list(column), digits) for column in itertools.islice(zip(*whole, strict=False), width)]
+
+
+def _padded(row: Any, width: int) -> tuple:
+    """A row that is not a whole list of `width` entries: its entries where it has them, None elsewhere."""
+    ok = isinstance(row, (list, tuple))
+    return tuple(row[j] if ok and len(row) > j else None for j in range(width))
 
 
 def _states(states: list, n: int) -> list[list]:
