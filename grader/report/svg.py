@@ -112,16 +112,12 @@ class Chart:
         ml, mr, mt, mb = 46, 10, 22 if self.title else 8, 34
         # a legend longer than the chart is wide takes more lines below it
         extra = 16 * max((line for _, line in legend), default=0)
-        pairs = [(x, y) for s in self.series for x, y in zip(s.xs, s.ys, strict=False)]
-        for bxs, los, his, _ in self.bands:
-            pairs += [(x, v) for x, lo, hi in zip(bxs, los, his, strict=False) for v in (lo, hi)]
-        off = sum(1 for x, y in pairs if (_off_chart(x) and _finite(y)) or (_off_chart(y) and _finite(x)))
-        xs = [x for x, y in pairs if _plottable(x) and _plottable(y)]
-        ys = [y for x, y in pairs if _plottable(x) and _plottable(y)]
-        if not xs:
-            xs, ys = [0.0, 1.0], [0.0, 1.0]
-        x0, x1 = min(xs), max(xs)
-        y0, y1 = min(ys), max(ys)
+        sources = [(s.xs, s.ys) for s in self.series]
+        for bxs, los, his, _ in self.bands:  # a band's points: (x, lo) and (x, hi), row by row
+            rows = list(zip(bxs, los, his, strict=False))
+            sources.append(([x for x, _, _ in rows for _ in (0, 1)],
+                            [v for _, lo, hi in rows for v in (lo, hi)]))
+        off, (x0, x1, y0, y1) = _extent(sources)
         if x1 - x0 < 1e-12:
             x0, x1 = x0 - 0.5, x1 + 0.5
         if y1 - y0 < 1e-12:
@@ -178,6 +174,41 @@ class Chart:
                        f'{escape(self.x_label)}</text>')
         out.append("</svg>")
         return Markup("".join(out))
+
+
+def _plottable_each(values: Sequence, n: int) -> list[bool]:
+    """_plottable of each of the first n values; a float (nearly every value) inline, without the call."""
+    return [-OFF_CHART <= v <= OFF_CHART if type(v) is float else _plottable(v) for v in values[:n]]
+
+
+def _extent(sources: list[tuple[Sequence, Sequence]],
+            empty: tuple[float, float, float, float] = (0.0, 1.0, 0.0, 1.0)) -> tuple[int, tuple]:
+    """(how many points are off the chart, (x0, x1, y0, y1)) of the (x, y) points of every (xs, ys) in
+    `sources`, in order: the smallest and largest plottable coordinates of the points plottable in both
+    (`empty` without one), the first of equal ones as min() and max() pick over all the points at once.
+    A point is off the chart when one coordinate is finite and the other beyond OFF_CHART."""
+    off, lows, highs = 0, [], []
+    flags: dict[tuple[int, int], list[bool]] = {}  # a chart's series share their xs: judged once
+    for xs, ys in sources:
+        n = min(len(xs), len(ys))
+        fx = flags.get((id(xs), n)) or flags.setdefault((id(xs), n), _plottable_each(xs, n))
+        fy = _plottable_each(ys, n)
+        if all(fx) and all(fy):  # the common case: every point drawn, none off the chart
+            kx, ky = xs[:n], ys[:n]
+        else:
+            both = [a and b for a, b in zip(fx, fy, strict=True)]
+            kx = [x for x, ok in zip(xs, both, strict=False) if ok]
+            ky = [y for y, ok in zip(ys, both, strict=False) if ok]
+            off += sum(1 for x, y, ok in zip(xs, ys, both, strict=False) if not ok
+                       and ((_off_chart(x) and _finite(y)) or (_off_chart(y) and _finite(x))))
+        if len(kx):
+            lows.append((min(kx), min(ky)))
+            highs.append((max(kx), max(ky)))
+    if not lows:
+        return off, empty
+    # min() and max() over the sources' own, in order: the first of equal values wins, as over them all
+    return off, (min(lo[0] for lo in lows), max(hi[0] for hi in highs),
+                 min(lo[1] for lo in lows), max(hi[1] for hi in highs))
 
 
 LEGEND_CHAR = 7.0  # px per character of an 11 px legend label, generously
@@ -248,13 +279,12 @@ def trajectory_svg(trace: dict, size: int = 360) -> Markup:
     steps = trace.get("steps") or {}
     xs, ys = steps.get("x") or [], steps.get("y") or []
     obstacles = (trace.get("world") or {}).get("obstacles") or []
-    pts = [(x, y) for poly in obstacles for x, y in poly] + list(zip(xs, ys, strict=False))
+    corners = [(x, y) for poly in obstacles for x, y in poly]
+    sources = [([x for x, _ in corners], [y for _, y in corners]), (xs, ys)]
     goal = trace.get("goal")
     if goal:
-        pts.append((goal[0], goal[1]))
-    pts = [p for p in pts if _plottable(p[0]) and _plottable(p[1])] or [(-1.0, -1.0), (1.0, 1.0)]
-    x0, x1 = min(p[0] for p in pts), max(p[0] for p in pts)
-    y0, y1 = min(p[1] for p in pts), max(p[1] for p in pts)
+        sources.append(([goal[0]], [goal[1]]))
+    _, (x0, x1, y0, y1) = _extent(sources, empty=(-1.0, 1.0, -1.0, 1.0))
     span = max(x1 - x0, y1 - y0, 0.2) * 1.06
     cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
     scale = size / span
