@@ -57,13 +57,13 @@ def signals_svg(trace: dict, names: Sequence[str], title: str | None = None) -> 
         series = by_unit.setdefault(unit, [])
         colour = _SERIES[len(series) % len(_SERIES)]
         if sig["kind"] in ("scalar", "count"):
-            series.append(Series(name, ts, [v if _finite(v) else None for v in values], colour))
+            series.append(Series(name, ts, _finite_or_none(values), colour))
         elif sig["kind"] == "flag":
             series.append(Series(name, ts, [None if v is None else float(v is True) for v in values], colour))
         elif sig["kind"] == "vector2":
             pair = (("1", 0), ("2", 1)) if unit == COEFFICIENTS else (("x", 0), ("y", 1))  # sigma: no x, y
             for axis, k in pair:
-                ys = [v[k] if isinstance(v, list) and len(v) == 2 and _finite(v[k]) else None for v in values]
+                ys = _finite_or_none([v[k] if isinstance(v, list) and len(v) == 2 else None for v in values])
                 series.append(Series(f"{name} {axis}", ts, ys, _SERIES[len(series) % len(_SERIES)],
                                      dash="" if k == 0 else "6 4"))
         # labels and points have no line: "states" shows labels; the replay draws points
@@ -74,6 +74,11 @@ def signals_svg(trace: dict, names: Sequence[str], title: str | None = None) -> 
         shown = title or ", ".join(dict.fromkeys(s.label.split()[0] for s in series))
         charts.append(Chart(series, title=shown + (f" ({unit})" if unit else ""), x_label="t (s)").render())
     return Markup("").join(charts) if charts else None
+
+
+def _finite_or_none(values: list) -> list:
+    """Each value that is a finite number, None for the rest (a float, nearly every value, checked inline)."""
+    return [v if (v - v == 0.0 if type(v) is float else _finite(v)) else None for v in values]
 
 
 def _runs(values: list, n: int) -> list[tuple[int, int, str]]:

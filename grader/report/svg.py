@@ -73,9 +73,8 @@ def _downsample(xs: Sequence, ys: Sequence, limit: int = 600) -> list[tuple[floa
     """At most ~limit points, keeping every gap (None) so broken lines stay broken."""
     n = min(len(xs), len(ys))
     stride = max(1, math.ceil(n / limit))
-    out = []
-    for k in range(0, n, stride):
-        out.append((xs[k], ys[k] if _plottable(ys[k]) else None))
+    out = [(xs[k], y if (-OFF_CHART <= y <= OFF_CHART if type(y := ys[k]) is float else _plottable(y))
+            else None) for k in range(0, n, stride)]
     if n and (n - 1) % stride:
         out.append((xs[n - 1], ys[n - 1] if _plottable(ys[n - 1]) else None))
     return out
@@ -233,11 +232,12 @@ def _paths(s: Series, px, py) -> list[str]:
     cur: list[str] = []
     prev = None
     for x, y in _downsample(s.xs, s.ys):
-        if y is None or not _plottable(x) or (s.wrap and prev is not None and abs(y - prev) > math.pi):
+        drawn = -OFF_CHART <= x <= OFF_CHART if type(x) is float else _plottable(x)
+        if y is None or not drawn or (s.wrap and prev is not None and abs(y - prev) > math.pi):
             if len(cur) > 1:
                 paths.append("M" + " L".join(cur))
             cur = []
-        if y is not None and _plottable(x):
+        if y is not None and drawn:
             cur.append(f"{_n(px(x))} {_n(py(y))}")
         prev = y
     if len(cur) > 1:
