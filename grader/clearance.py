@@ -137,6 +137,12 @@ def _edge_pairs_that_may_meet(a: Shape, b: Shape) -> list[tuple]:
     return out
 
 
+def nearest_edge(point: Point, segments: list[tuple]) -> float:
+    """The smallest point_to_segment from `point` to the edges (Shape.segments), bit for bit, edges whose
+    box is already farther than the nearest so far skipped."""
+    return _vertices_to_edges([point], segments, math.inf)
+
+
 def _vertices_to_edges(points: list[Point], segments: list[tuple], best: float) -> float:
     """min(best, point_to_segment of every point against every segment), skipping the pairs that
     cannot be nearer than the best so far (their box gap, a lower bound, exceeds it by SLACK)."""

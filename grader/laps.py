@@ -12,7 +12,7 @@ import math
 import statistics
 from collections.abc import Sequence
 
-from grader.clearance import point_to_segment
+from grader.clearance import Shape, nearest_edge, point_to_segment
 
 Point = tuple[float, float]
 
@@ -30,8 +30,11 @@ def median_distance(
     xs: Sequence[float], ys: Sequence[float], obstacles: Sequence[Sequence[Point]], every: int = 5
 ) -> float:
     """The median distance from the robot's centre to the obstacles over the positions given (every
-    `every`-th, enough for a median at 7.5 mm per step)."""
-    return statistics.median(distance_to((xs[k], ys[k]), obstacles) for k in range(0, len(xs), every))
+    `every`-th, enough for a median at 7.5 mm per step). Each is distance_to's, bit for bit: the same
+    point_to_segment arithmetic (clearance's inline one), edges whose box is already farther than the
+    nearest found skipped (tests/grader/test_laps.py)."""
+    edges = [segment for poly in obstacles for segment in Shape(poly).segments]
+    return statistics.median(nearest_edge((xs[k], ys[k]), edges) for k in range(0, len(xs), every))
 
 
 def turning_rate(thetas: Sequence[float], dt: float) -> float | None:

@@ -5,6 +5,7 @@
   tests/data/before_issue24), on random runs through every kind of world (square, turned, mirrored, odd
   polygons, runs into obstacles), and on every run of the solutions, the stubs and the kept wrong versions
   of weeks 4-7; a kept wrong bound (the plate's box not turned with the robot) is caught;
+- the laps' median distance to the obstacle skips edges already farther: the same figure;
 - the report (its charts, top views and embedded replays) byte for byte the one the old plots and replay
   packing wrote, for each of those gradings.
 """
@@ -21,9 +22,11 @@ from types import ModuleType
 import pytest
 from mistakes import DATA, build, read_mistake
 
+import grader.laps as laps
 import grader.report.html as html
 import grader.scenarios as scenarios
 from grader import clearance
+from grader.checks import week6
 from grader.checks.week4 import _variant
 from grader.checks.week7 import turned
 from grader.grading import grade_submission
@@ -56,6 +59,7 @@ def _load(name: str, path: Path, aliases: dict[str, ModuleType] | None = None) -
 
 OLD_CLEARANCE = _load("before_issue24_clearance", BEFORE / "clearance.py")
 OLD_MIN = _load("before_issue24_min_clearance", BEFORE / "min_clearance.py", {"clearance": OLD_CLEARANCE})
+OLD_LAPS = _load("before_issue24_laps", BEFORE / "laps.py")
 OLD_SVG = _load("before_issue24_svg", BEFORE / "svg.py")
 OLD_PLOTS = _load("before_issue24_signal_plots", BEFORE / "signal_plots.py", {"grader.report.svg": OLD_SVG})
 OLD_REPLAY = _load("before_issue24_replay", BEFORE / "replay.py")
@@ -161,6 +165,23 @@ def test_the_comparison_catches_a_bound_that_forgets_the_robot_turns(monkeypatch
     assert differ > 0  # (7 of the 66 runs: where a turned plate reached nearer than its unturned box)
 
 
+def test_the_laps_median_distance_is_the_every_edge_one() -> None:
+    """grader.laps.median_distance skips edges already farther than the nearest: the same median, and
+    each point's distance the same as distance_to's, on random runs through every kind of world."""
+    points = 0
+    for trace, world, every in _random_runs("laps"):
+        xs, ys = trace.steps["x"], trace.steps["y"]
+        obstacles = [list(p) for p in world.obstacles]
+        if len(xs) > 2:
+            ours = laps.median_distance(xs, ys, obstacles, every)
+            assert _same_float(ours, OLD_LAPS.median_distance(xs, ys, obstacles, every)), world.name
+        edges = [seg for poly in obstacles for seg in clearance.Shape(poly).segments]
+        for x, y in list(zip(xs, ys, strict=True))[::7]:
+            assert _same_float(clearance.nearest_edge((x, y), edges), OLD_LAPS.distance_to((x, y), obstacles))
+            points += 1
+    assert points > 1000
+
+
 # ---- every run and report of the kept versions -----------------------------------------------------------
 
 def _versions() -> list[tuple[str, int]]:
@@ -182,7 +203,8 @@ def _old_report(result: dict, traces: dict) -> str:
 def graded(tmp_path_factory) -> dict[str, dict]:
     """Each kept version of weeks 4-7 graded once (hidden checks included, but for week 6's wrong
     versions, whose extra laps add minutes and no new kind of world), every min_clearance call compared with
-    the old one on the spot: {label: {"result", "traces", "clearances": [(ours, theirs)]}}."""
+    the old one on the spot (and week 6's laps median distances): {label: {"result", "traces",
+    "clearances": [(ours, theirs)]}, "week 6 medians": {"medians": [(ours, theirs)]}}."""
     tmp = tmp_path_factory.mktemp("issue24")
     measured: list[tuple[float | None, float | None]] = []
     real = scenarios.min_clearance
@@ -192,9 +214,16 @@ def graded(tmp_path_factory) -> dict[str, dict]:
         measured.append((ours, OLD_MIN.min_clearance(trace, world, spec, every)))
         return ours
 
+    def both_medians(xs, ys, obstacles, every=5):
+        ours = laps.median_distance(xs, ys, obstacles, every)
+        medians.append((ours, OLD_LAPS.median_distance(xs, ys, obstacles, every)))
+        return ours
+
+    medians: list[tuple[float, float]] = []
     out: dict[str, dict] = {}
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(scenarios, "min_clearance", both)
+        mp.setattr(week6, "median_distance", both_medians)
         for label, week in _versions():
             folder = ROOT / label if "/" in label else build("wrong", label, tmp, week)
             measured.clear()
@@ -202,6 +231,7 @@ def graded(tmp_path_factory) -> dict[str, dict]:
             hidden = "/" in label or week != 6
             result = grade_submission(week, folder, seed=2014, hidden=hidden, traces=traces)
             out[label] = {"result": result, "traces": traces, "clearances": list(measured)}
+    out["week 6 medians"] = {"medians": medians}
     return out
 
 
@@ -209,6 +239,9 @@ def graded(tmp_path_factory) -> dict[str, dict]:
 def test_every_run_of_the_kept_versions_has_the_every_step_clearance(graded) -> None:
     runs = 0
     for label, g in graded.items():
+        if "medians" in g:
+            assert len(g["medians"]) > 20 and all(_same_float(a, b) for a, b in g["medians"]), g["medians"]
+            continue
         assert g["result"]["status"] == "graded", label
         for ours, theirs in g["clearances"]:
             assert _same_float(ours, theirs), (label, ours, theirs)
@@ -219,6 +252,8 @@ def test_every_run_of_the_kept_versions_has_the_every_step_clearance(graded) -> 
 @pytest.mark.slow
 def test_every_report_of_the_kept_versions_is_the_old_one_byte_for_byte(graded) -> None:
     for label, g in graded.items():
+        if "medians" in g:
+            continue
         ours = html.render_report(g["result"], g["traces"])
         assert ours == _old_report(g["result"], g["traces"]), label
     assert sum(len(g["traces"]) for g in graded.values()) > 150
