@@ -129,10 +129,13 @@ def _key_text(key: str) -> str:
 
 def print_one(figures: dict) -> None:
     for key, rows in figures.items():
-        print(f"{_key_text(key)}: grading-process CPU ms, median of the warm gradings")
+        print(f"{_key_text(key)}: grading-process CPU ms, median of the warm gradings, and the share of "
+              f"the same run's grading process in all")
+        total = rows[TOTAL]
         for label in [TOTAL] + [c[0] for c in COMPONENTS]:
             value = rows.get(label)
-            print(f"  {label:48s} {'n/a' if value is None else f'{value:8.1f}'}")
+            share = "" if value is None or label == TOTAL else f" {value / total:6.1%}"
+            print(f"  {label:48s} {'n/a' if value is None else f'{value:8.1f}'}{share}")
 
 
 def print_ab(base: list[dict], ours: list[dict], base_dir: str) -> None:

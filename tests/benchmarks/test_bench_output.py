@@ -71,6 +71,20 @@ def test_batch_bench_prints_machine_baseline_and_ratios():
     assert float(busy.group(3)) == 0 and float(busy.group(4)) > 0
 
 
+def test_beyond_step_prints_each_part_alone_and_against_another_checkout():
+    out = _script("benchmarks/beyond_step.py", "--weeks", "7", "--repeat", "1")
+    assert MACHINE.search(out) and LOAD_AFTER.search(out)
+    total = re.search(r"^  grading process in all \(grade_submission\) +([0-9.]+)$", out, re.M)
+    part = re.search(r"^  scenario metric: min_clearance +([0-9.]+) +([0-9.]+)%$", out, re.M)
+    assert total and part and 0 < float(part.group(1)) < float(total.group(1)), out
+    out = _script("benchmarks/beyond_step.py", "--weeks", "7", "--repeat", "1", "--rounds", "1",
+                  "--against", str(ROOT))  # A and B the same checkout: the ratios are about 1
+    assert MACHINE.search(out) and LOAD_AFTER.search(out)
+    ratio = re.search(r"^  report: JSON and HTML \(write_outputs\) +A +[0-9.]+ +B +[0-9.]+ +([0-9.]+) ",
+                      out, re.M)
+    assert ratio and 0.2 < float(ratio.group(1)) < 5, out
+
+
 def test_grade_profile_prints_every_phase():
     # The profile wraps grader functions by name (grading._splice, write_outputs, scenarios.run, ...): a
     # rename must break this test, not silently drop a row from docs/performance.md's source.
