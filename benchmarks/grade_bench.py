@@ -1,12 +1,13 @@
 """Seconds to grade one submission (the reference solutions), wall and CPU, with a baseline from the same run.
 
-    python benchmarks/grade_bench.py [--repeat 3] [--weeks 1 2 3 4] [--cli-week 3] [--no-hidden]
+    python benchmarks/grade_bench.py [--repeat 3] [--weeks 1 2 3 4] [--cli-week 3] [--no-hidden] [--report]
                                      [--sandbox auto|bwrap|subprocess]
 
 Prints the machine line; the baseline (a fresh `python -c 'import grader.grading'` plus a bare sandboxed
 worker start, see grading_baseline.py); then `grade weekN --solutions` as a user runs it (a fresh
 process: imports, splicing, the worker, every check, the HTML report), and grade_submission per week in
-this already-warm process, visible checks and with --hidden. Each figure in wall and CPU seconds (all
+this already-warm process, visible checks and with --hidden (without the report, unless --report: then
+each also writes its JSON and HTML report, as `grade weekN` does). Each figure in wall and CPU seconds (all
 processes: the grader and its sandboxed workers) and as a ratio to the baseline. A figure to read, not a
 test: on a shared machine compare CPU seconds and the ratios, not wall seconds.
 """
@@ -65,6 +66,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--cli-week", type=int, default=3, choices=week_numbers(),
                    help="the week graded as a fresh `grade` process")
     p.add_argument("--no-hidden", action="store_true", help="skip the --hidden figures")
+    p.add_argument("--report", action="store_true",
+                   help="the warm gradings also write their JSON and HTML report (as `grade weekN` does)")
     p.add_argument("--sandbox", default="auto", choices=["auto", "bwrap", "subprocess"])
     args = p.parse_args(argv)
     if args.repeat < 1:
@@ -84,14 +87,16 @@ def main(argv: list[str] | None = None) -> int:
         for week in args.weeks:
             usages, checks = [], []
             for _ in range(args.repeat):
-                with Stopwatch() as sw:
+                with tempfile.TemporaryDirectory(prefix="simiam-bench-") as out, Stopwatch() as sw:
                     result = grade_submission(week, ROOT / "solutions" / f"week{week}", seed=2014,
-                                              hidden=hidden, sandbox=args.sandbox)
+                                              hidden=hidden, sandbox=args.sandbox,
+                                              out_dir=Path(out) if args.report else None)
                 usages.append(sw.usage)
                 checks.append(sum(result["timing"]["checks"].values()))
             extra = (f"; checks {statistics.median(checks):.2f} s, {len(result['checks'])} checks, score "
                      f"{result['score']:g}/{result['max_score']:g}, isolation {result.get('isolation', '?')}")
-            label = f"week{week} {'hidden ' if hidden else 'visible'} grade_submission (warm process)"
+            label = (f"week{week} {'hidden ' if hidden else 'visible'} grade_submission "
+                     f"{'and its report ' if args.report else ''}(warm process)")
             print(_figure(label, usages, base, extra), flush=True)
     print(load_after_line())
     return 0
