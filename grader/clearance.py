@@ -73,6 +73,8 @@ def pose_bounds(plate: Sequence[Sequence[float]], poses: Sequence[Sequence[float
     plate) lie. The plate's extent is widened by far more than the rounding of the placement and of these
     sums (transform's fast_error), so that no pose is ever bounded above its gap as computed. Cheap (no
     placement, no Shape): min_clearance measures only the poses whose bound can beat the smallest gap."""
+    if not shapes:
+        return [math.inf] * len(poses)
     bx, by = [float(p[0]) for p in plate], [float(p[1]) for p in plate]
     cx, cy = (min(bx) + max(bx)) / 2, (min(by) + max(by)) / 2
     hx, hy = (max(bx) - min(bx)) / 2, (max(by) - min(by)) / 2
@@ -98,7 +100,7 @@ def pose_bounds(plate: Sequence[Sequence[float]], poses: Sequence[Sequence[float
             # expressions are max(), three times faster)
             per_shape[k] = [(a if a > g else g) if (a := u - hi) > (b := lo - v) else (b if b > g else g)
                             for u, v, g in zip(low, high, per_shape[k], strict=True)]
-    return list(map(min, *per_shape)) if len(shapes) > 1 else per_shape[0]
+    return list(map(min, *per_shape)) if len(per_shape) > 1 else per_shape[0]
 
 
 def box_gap(a: Box, b: Box) -> float:
