@@ -198,7 +198,9 @@ def min_clearance(trace: Trace, world: World, spec, every: int = 1) -> float | N
             if clearance.box_gap(body.box, obstacle.box) < gap:  # else it cannot be the nearest
                 gap = clearance.nearer(body, obstacle, gap)
 
-    finite = [i for i, b in enumerate(bounds) if b == b]  # a pose that is not a number has no gap
+    # a pose that is not a number is bounded by -inf: measured, and left out by measure()'s box test as
+    # before (a NaN bound, which pose_bounds never gives, would upset the sort: kept out)
+    finite = [i for i, b in enumerate(bounds) if b == b]
     if finite:
         measure(poses[min(finite, key=bounds.__getitem__)])
     # every pose whose bound is not beyond the gap so far, nearest first: the gap falls fast, and once a
