@@ -3,8 +3,9 @@
 - min_clearance measures only the steps whose cheap lower bound can beat the smallest gap (grader/scenarios
   and grader/clearance.pose_bounds): bit for bit the figure of the version that measured every step (kept in
   tests/data/before_issue24), on random runs through every kind of world (square, turned, mirrored, odd
-  polygons, runs into obstacles), and on every run of the solutions, the stubs and the kept wrong versions
-  of weeks 4-7; a kept wrong bound (the plate's box not turned with the robot) is caught;
+  polygons, runs into obstacles), and on every run of the solutions and the stubs of weeks 4-7 (with
+  SIMIAM_SAME_AFTER_ISSUE24=full, of the kept wrong versions too); a kept wrong bound (the plate's box not
+  turned with the robot) is caught;
 - the laps' median distance to the obstacle skips edges already farther: the same figure;
 - the report (its charts, top views and embedded replays) byte for byte the one the old plots and replay
   packing wrote, for each of those gradings.
@@ -14,6 +15,7 @@ from __future__ import annotations
 
 import importlib.util
 import math
+import os
 import random
 import sys
 from pathlib import Path
@@ -184,10 +186,15 @@ def test_the_laps_median_distance_is_the_every_edge_one() -> None:
 
 # ---- every run and report of the kept versions -----------------------------------------------------------
 
+# The suite compares the solutions and the stubs (their hidden runs hold every kind of world, turned ones
+# too); SIMIAM_SAME_AFTER_ISSUE24=full adds the 48 kept versions (about 100 s more on one core).
+FULL = os.environ.get("SIMIAM_SAME_AFTER_ISSUE24") == "full"
+
+
 def _versions() -> list[tuple[str, int]]:
     out = [(f"{kind}/week{week}", week) for kind in ("solutions", "assignments") for week in (4, 5, 6, 7)]
     return out + [(p.stem, read_mistake(p).week) for p in sorted((DATA / "wrong").glob("*.patch"))
-                  if read_mistake(p).week >= 4]
+                  if FULL and read_mistake(p).week >= 4]
 
 
 def _old_report(result: dict, traces: dict) -> str:
@@ -242,9 +249,10 @@ def test_every_run_of_the_kept_versions_has_the_every_step_clearance(graded) -> 
         for ours, theirs in g["clearances"]:
             assert _same_float(ours, theirs), (label, ours, theirs)
             runs += 1
-    assert runs > 150  # every scenario run of every version, the hidden checks' turned worlds included
+    assert runs > (150 if FULL else 25)  # every scenario run of every version, hidden turned worlds included
     medians = graded["medians"]
-    assert len(medians) > 20 and all(_same_float(ours, theirs) for ours, theirs in medians), medians
+    assert len(medians) > (20 if FULL else 4), medians
+    assert all(_same_float(ours, theirs) for ours, theirs in medians), medians
 
 
 @pytest.mark.slow
@@ -252,4 +260,4 @@ def test_every_report_of_the_kept_versions_is_the_old_one_byte_for_byte(graded) 
     for label, g in graded["versions"].items():
         ours = html.render_report(g["result"], g["traces"])
         assert ours == _old_report(g["result"], g["traces"]), label
-    assert sum(len(g["traces"]) for g in graded["versions"].values()) > 150
+    assert sum(len(g["traces"]) for g in graded["versions"].values()) > (150 if FULL else 25)
