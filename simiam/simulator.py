@@ -197,8 +197,10 @@ class Simulator:
     def step(self) -> StepRecord:
         """Advance one time step in the original's order; returns the new state."""
         command = self._advance()
-        if not self._collide():
-            self._update_ir()
+        # `_collide` then `_update_ir`, in one physics pass (a Fleet's robots take the two apart)
+        collided, ranges, raws = self._surfaces.step((self._x, self._y, self._theta))
+        if not self._hit(collided):
+            self._ir_range, self._ir_raw = ranges, raws
         return self._finish(command)
 
     # The three phases of a step, separate so that a Fleet can run the physics of all robots together.
@@ -216,11 +218,15 @@ class Simulator:
 
     def _collide(self, others: Sequence[ObstacleEdges] = ()) -> bool:
         """The collision check at the new pose; remembers the first collision."""
-        self._collided = self._check_collision(others)
-        if self._collided and self._first_collision is None:
+        return self._hit(self._check_collision(others))
+
+    def _hit(self, collided: bool) -> bool:
+        """Keep the collision verdict at the new pose (and the first collision); returns it."""
+        self._collided = collided
+        if collided and self._first_collision is None:
             self._first_collision = {"step": self._k, "t": self._k * self.dt,
                                      "pose": [self._x, self._y, self._theta]}
-        return self._collided
+        return collided
 
     def _finish(self, command: Command | None) -> StepRecord:
         self._last = self._record(command)

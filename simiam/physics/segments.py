@@ -91,8 +91,14 @@ class ObstacleEdges:
     def near(self, x: float, y: float, reach: float) -> list[PolygonBox]:
         """The obstacles whose padded box meets the square of half-side `reach` around (x, y): everything
         a body lying within `reach` of (x, y) could touch."""
-        return [p for p in self.polygons
-                if not (x + reach < p[0] or x - reach > p[1] or y + reach < p[2] or y - reach > p[3])]
+        return boxes_near(self.polygons, x, y, reach)
+
+
+def boxes_near(polygons: Sequence[PolygonBox], x: float, y: float, reach: float) -> list[PolygonBox]:
+    """`ObstacleEdges.near` among `polygons`, in their order. Among the boxes near (x, y) for a longer
+    reach it finds the same as among all: x + reach and the other bounds round monotonically in reach."""
+    return [p for p in polygons
+            if not (x + reach < p[0] or x - reach > p[1] or y + reach < p[2] or y - reach > p[3])]
 
 
 # The fast loop's band, in units of the edge parameters: outside [-BAND, BAND] and [1 - BAND, 1 + BAND]
