@@ -161,6 +161,14 @@ def _vector2(p: Any, _n: int) -> list[float] | None:
 
 
 def _points(p: Any, n: int) -> list[list[float]] | None:
+    if type(p) is list and len(p) == 2 and n <= MAX_POINTS:  # the common case: two lists of n floats
+        xs, ys = p
+        if (type(xs) is list and type(ys) is list and len(xs) == n and len(ys) == n
+                and set(map(type, xs)) == _FLOAT and set(map(type, ys)) == _FLOAT):
+            # what the loop below gives them: None unless each row's sum is finite
+            tx = sum(xs)
+            ty = sum(ys)
+            return [xs[:], ys[:]] if tx - tx == 0.0 and ty - ty == 0.0 else None
     if not (isinstance(p, (list, tuple)) and len(p) == 2) or n > MAX_POINTS:
         return None
     out = []

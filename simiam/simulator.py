@@ -83,8 +83,12 @@ class Simulator:
         self._collided = False
         self._first_collision: dict | None = None
         self._surfaces = RobotSurfaces(spec, world.obstacles)
-        self._ir_range = [spec.ir_max_range] * self._n_ir
-        self._ir_raw = [0] * self._n_ir
+        # what every step reads of the spec, looked up once
+        self._wheels = (spec.wheel_radius, spec.wheel_base_length)
+        self._limits = (spec.max_vel, spec.min_vel)
+        # the IR values are tuples (RobotSurfaces.sense's): records and properties share them uncopied
+        self._ir_range: tuple[float, ...] = (spec.ir_max_range,) * self._n_ir
+        self._ir_raw: tuple[int, ...] = (0,) * self._n_ir
         self._update_ir()
         self._last: StepRecord = self._record(None)
 
@@ -102,12 +106,12 @@ class Simulator:
     @property
     def ir_raw(self) -> tuple[int, ...]:
         """The raw IR values (one per sensor) computed at the end of the last step."""
-        return tuple(self._ir_raw)
+        return self._ir_raw
 
     @property
     def ir_range(self) -> tuple[float, ...]:
         """The true IR ranges (m) behind `ir_raw`."""
-        return tuple(self._ir_range)
+        return self._ir_range
 
     @property
     def wheel_speeds(self) -> tuple[float, float]:
@@ -170,11 +174,11 @@ class Simulator:
         return self._surfaces.collides((self._x, self._y, self._theta), others)
 
     def _move(self) -> None:
-        spec = self.spec
-        self._x, self._y, self._theta = move(self._x, self._y, self._theta, self._vel_r, self._vel_l,
-                                             spec.wheel_radius, spec.wheel_base_length, self.dt)
-        self._enc_r.update(self._vel_r, self.dt)
-        self._enc_l.update(self._vel_l, self.dt)
+        R, L = self._wheels
+        vel_r, vel_l, dt = self._vel_r, self._vel_l, self.dt
+        self._x, self._y, self._theta = move(self._x, self._y, self._theta, vel_r, vel_l, R, L, dt)
+        self._enc_r.update(vel_r, dt)
+        self._enc_l.update(vel_l, dt)
 
     def _think(self, t: float) -> Command:
         readings: Readings = {"t": t, "dt": self.dt, "ticks": [self._enc_r.ticks, self._enc_l.ticks],
@@ -185,13 +189,12 @@ class Simulator:
             self._brain_exception = exc  # run() ends on this one; anything else raised in a step is a bug
             raise
         command = validate_command(answer, self.signals, self._n_ir, self._plan)
-        self._vel_r, self._vel_l = limit_speeds(command["vel_r"], command["vel_l"],
-                                                self.spec.max_vel, self.spec.min_vel)
+        self._vel_r, self._vel_l = limit_speeds(command["vel_r"], command["vel_l"], *self._limits)
         return command
 
     def _record(self, command: Command | None) -> StepRecord:
         return StepRecord(self._k, self._k * self.dt, (self._x, self._y, self._theta),
-                          (self._enc_r.ticks, self._enc_l.ticks), tuple(self._ir_raw), tuple(self._ir_range),
+                          (self._enc_r.ticks, self._enc_l.ticks), self._ir_raw, self._ir_range,
                           self._vel_r, self._vel_l, command, self._collided)
 
     def step(self) -> StepRecord:

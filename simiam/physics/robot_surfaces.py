@@ -35,6 +35,7 @@ from simiam.robot.quickbot import RobotSpec
 
 Pose = tuple[float, float, float]
 Point = tuple[float, float]
+Sensed = tuple[tuple[float, ...], tuple[int, ...]]  # the IR ranges (m) and raw values, one per sensor
 
 
 def _capsule(cone: Sequence[Point]) -> tuple[float, float, float, float, float]:
@@ -93,6 +94,7 @@ class RobotSurfaces:
         self._parallel = _near_parallel(surfaces, spans, polygons, max(self._plate_reach, self._ir_reach))
         self._quick = min(self._extent, self._parallel.far)  # where NearParallel.free holds
         self._raw_nothing = distance_to_raw(spec.ir_max_range, spec.ir_mode)
+        self._open: Sensed = ((spec.ir_max_range,) * len(self.cones), (self._raw_nothing,) * len(self.cones))
         self._capsules = [_capsule(cone) for cone in self.cones]
         # the plate's nearby obstacles are those of the cones' reach that lie within its own (see `step`)
         self._plate_within_ir = self._plate_reach <= self._ir_reach
@@ -104,14 +106,14 @@ class RobotSurfaces:
             near += [o.polygons[0] for o in others]
         return self._collides(pose, near, 0 in self._flagged(pose), others)
 
-    def sense(self, pose: Pose, others: Sequence[ObstacleEdges] = ()) -> tuple[list[float], list[int]]:
+    def sense(self, pose: Pose, others: Sequence[ObstacleEdges] = ()) -> Sensed:
         """The IR ranges (m) and raw values of every sensor with the robot at `pose`."""
         near = self.obstacles.near(pose[0], pose[1], self._ir_reach)
         if others:
             near += [o.polygons[0] for o in others]
         return self._sense(pose, near, self._flagged(pose), others)
 
-    def step(self, pose: Pose) -> tuple[bool, list[float], list[int]] | tuple[bool, None, None]:
+    def step(self, pose: Pose) -> tuple[bool, tuple[float, ...], tuple[int, ...]] | tuple[bool, None, None]:
         """A lone robot's physics pass at `pose`: (True, None, None) when the plate touches an obstacle,
         else (False, ranges, raws) as `sense` gives them. The same answers as `collides` then `sense`,
         which look up the nearby obstacles and the near-parallel surfaces once each; this looks them up
@@ -148,19 +150,19 @@ class RobotSurfaces:
         return plate_collides_exact(list(zip(xs, ys, strict=True)), self._surfaces(others), self._plate_span)
 
     def _sense(self, pose: Pose, near: list[PolygonBox], parallel: frozenset[int],
-               others: Sequence[ObstacleEdges]) -> tuple[list[float], list[int]]:
+               others: Sequence[ObstacleEdges]) -> Sensed:
         """`sense` with the nearby obstacles (others' plates included) and the flagged surfaces looked up.
 
         A cone is placed only when its capsule (`_capsule`) meets a nearby obstacle's padded box: every
         other cone's vertices lie apart from every such box, where culled_crossings finds nothing and the
         range is max_range. A placed cone's vertices are transform_fast's, computed the same way."""
+        if not near and not parallel:  # open space: every cone reads max_range
+            return self._open
         spec = self.spec
         lo, hi, mode = spec.ir_min_range, spec.ir_max_range, spec.ir_mode
         n = len(self.cones)
         ranges = [hi] * n
         raws = [self._raw_nothing] * n
-        if not near and not parallel:  # open space: every cone reads max_range
-            return ranges, raws
         x, y, theta = pose
         c, s = math.cos(theta), math.sin(theta)  # as transform_fast computes them
         margins = None
@@ -209,7 +211,7 @@ class RobotSurfaces:
                 continue
             ranges[i] = d
             raws[i] = distance_to_raw(d, mode)
-        return ranges, raws
+        return tuple(ranges), tuple(raws)
 
     @staticmethod
     def _margins(extent: float, reach: float, size: float) -> Tolerance:

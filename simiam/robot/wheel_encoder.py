@@ -6,6 +6,9 @@ import math
 
 from simiam.robot.rounding import round_half_away
 
+PI = math.pi
+TWO_PI = 2 * math.pi  # exact: a doubling
+
 
 class WheelEncoder:
     """One wheel's encoder. `ticks` is the cumulative count; the fractional wheel angle is carried over."""
@@ -19,8 +22,9 @@ class WheelEncoder:
 
     def update(self, vel: float, dt: float) -> int:
         """Advance by wheel speed `vel` (rad/s, the limited speed) over dt; returns the ticks added."""
-        self.residual += vel * dt
-        k = round_half_away(self.residual * self.ticks_per_rev / (2 * math.pi))
-        self.residual -= k * 2 * math.pi / self.ticks_per_rev
+        residual = self.residual + vel * dt
+        tpr = self.ticks_per_rev
+        k = round_half_away(residual * tpr / TWO_PI)
+        self.residual = residual - k * 2 * PI / tpr  # (k*2)*pi/tpr, in this order
         self.ticks += k
         return k
