@@ -95,6 +95,7 @@ class RobotSurfaces:
         self._quick = min(self._extent, self._parallel.far)  # where NearParallel.free holds
         self._raw_nothing = distance_to_raw(spec.ir_max_range, spec.ir_mode)
         self._open: Sensed = ((spec.ir_max_range,) * len(self.cones), (self._raw_nothing,) * len(self.cones))
+        self._open_step = (False, *self._open)
         self._capsules = [_capsule(cone) for cone in self.cones]
         # the plate's nearby obstacles are those of the cones' reach that lie within its own (see `step`)
         self._plate_within_ir = self._plate_reach <= self._ir_reach
@@ -119,8 +120,10 @@ class RobotSurfaces:
         which look up the nearby obstacles and the near-parallel surfaces once each; this looks them up
         once for both (the plate's obstacles are among the cones', whose reach is longer)."""
         x, y, _ = pose
-        near = self.obstacles.near(x, y, self._ir_reach)
+        near = boxes_near(self.obstacles.polygons, x, y, self._ir_reach)
         parallel = self._flagged(pose)
+        if not near and not parallel:  # open space (most steps): no collision, every cone reads max_range
+            return self._open_step
         if self._plate_within_ir:
             plate_near = boxes_near(near, x, y, self._plate_reach)
         else:

@@ -157,3 +157,24 @@ def test_encoders_count_as_before(seed):
         residual -= k * 2 * math.pi / 16
         ticks += k
         assert (added, encoder.ticks, encoder.residual.hex()) == (k, ticks, residual.hex())
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_the_move_is_diff_to_uni_and_the_chord_as_before(seed):
+    from simiam.robot.dynamics import _sinc, diff_to_uni, move
+
+    rng = random.Random(seed)
+    R, L = 0.0325, 0.09925
+    for _ in range(5000):
+        x, y, theta = rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-50, 50)
+        vel_r = rng.choice([rng.uniform(-14, 14), 0.0, -0.0, 8.377580409572781])
+        vel_l = rng.choice([rng.uniform(-14, 14), vel_r, -vel_r, vel_r + 1e-9, vel_r * (1 + 1e-12)])
+        dt = rng.choice([0.033, 0.05])
+        v, w = diff_to_uni(R, L, vel_r, vel_l)  # move before issue 24
+        if w == 0.0:
+            want = (x + v * dt * math.cos(theta), y + v * dt * math.sin(theta), theta)
+        else:
+            half = w * dt / 2
+            chord = v * dt * _sinc(half)
+            want = (x + chord * math.cos(theta + half), y + chord * math.sin(theta + half), theta + w * dt)
+        assert same(move(x, y, theta, vel_r, vel_l, R, L, dt), want)
