@@ -31,6 +31,7 @@ __all__ = ["Brain", "BrainError", "Command", "ConstantBrain", "Ending", "EndReas
            "StepRecord", "add_row", "run_steps", "validate_command"]
 
 Pose = tuple[float, float, float]
+_new_tuple = tuple.__new__
 
 
 class StepRecord(NamedTuple):
@@ -85,6 +86,7 @@ class Simulator:
         self._surfaces = RobotSurfaces(spec, world.obstacles)
         # what every step reads of the spec, looked up once
         self._wheels = (spec.wheel_radius, spec.wheel_base_length)
+        self._brain_first = spec.brain_first
         self._limits = (spec.max_vel, spec.min_vel)
         # the IR values are tuples (RobotSurfaces.sense's): records and properties share them uncopied
         self._ir_range: tuple[float, ...] = (spec.ir_max_range,) * self._n_ir
@@ -193,9 +195,10 @@ class Simulator:
         return command
 
     def _record(self, command: Command | None) -> StepRecord:
-        return StepRecord(self._k, self._k * self.dt, (self._x, self._y, self._theta),
-                          (self._enc_r.ticks, self._enc_l.ticks), self._ir_raw, self._ir_range,
-                          self._vel_r, self._vel_l, command, self._collided)
+        # tuple.__new__ builds the same StepRecord as StepRecord(...) without its Python-level __new__
+        return _new_tuple(StepRecord, (self._k, self._k * self.dt, (self._x, self._y, self._theta),
+                                       (self._enc_r.ticks, self._enc_l.ticks), self._ir_raw, self._ir_range,
+                                       self._vel_r, self._vel_l, command, self._collided))
 
     def step(self) -> StepRecord:
         """Advance one time step in the original's order; returns the new state."""
@@ -216,7 +219,7 @@ class Simulator:
         """Move and run the brain (week 1: the brain first); returns the validated command."""
         self._k += 1
         t = self._k * self.dt
-        if self.spec.brain_first:
+        if self._brain_first:
             command = self._think(t)
             self._move()
         else:

@@ -119,9 +119,14 @@ class RobotSurfaces:
         else (False, ranges, raws) as `sense` gives them. The same answers as `collides` then `sense`,
         which look up the nearby obstacles and the near-parallel surfaces once each; this looks them up
         once for both (the plate's obstacles are among the cones', whose reach is longer)."""
-        x, y, _ = pose
+        x, y, theta = pose
         near = boxes_near(self.obstacles.polygons, x, y, self._ir_reach)
-        parallel = self._flagged(pose)
+        lo, hi = self._parallel.free
+        quick = self._quick
+        if lo < theta < hi and -quick < x < quick and -quick < y < quick:  # `_flagged`'s shortcut, inline
+            parallel = NONE
+        else:
+            parallel = self._parallel.flagged(x, y, theta)
         if not near and not parallel:  # open space (most steps): no collision, every cone reads max_range
             return self._open_step
         if self._plate_within_ir:
