@@ -191,7 +191,8 @@ class Simulator:
             self._brain_exception = exc  # run() ends on this one; anything else raised in a step is a bug
             raise
         command = validate_command(answer, self.signals, self._n_ir, self._plan)
-        self._vel_r, self._vel_l = limit_speeds(command["vel_r"], command["vel_l"], *self._limits)
+        max_vel, min_vel = self._limits
+        self._vel_r, self._vel_l = limit_speeds(command["vel_r"], command["vel_l"], max_vel, min_vel)
         return command
 
     def _record(self, command: Command | None) -> StepRecord:

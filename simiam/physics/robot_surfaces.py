@@ -96,6 +96,7 @@ class RobotSurfaces:
         self._raw_nothing = distance_to_raw(spec.ir_max_range, spec.ir_mode)
         self._open: Sensed = ((spec.ir_max_range,) * len(self.cones), (self._raw_nothing,) * len(self.cones))
         self._open_step = (False, *self._open)
+        self._ranging = (spec.ir_min_range, spec.ir_max_range, spec.ir_mode)
         self._capsules = [_capsule(cone) for cone in self.cones]
         # the plate's nearby obstacles are those of the cones' reach that lie within its own (see `step`)
         self._plate_within_ir = self._plate_reach <= self._ir_reach
@@ -166,19 +167,16 @@ class RobotSurfaces:
         range is max_range. A placed cone's vertices are transform_fast's, computed the same way."""
         if not near and not parallel:  # open space: every cone reads max_range
             return self._open
-        spec = self.spec
-        lo, hi, mode = spec.ir_min_range, spec.ir_max_range, spec.ir_mode
-        n = len(self.cones)
-        ranges = [hi] * n
-        raws = [self._raw_nothing] * n
+        lo, hi, mode = self._ranging
+        ranges = list(self._open[0])
+        raws = list(self._open[1])
         x, y, theta = pose
         c, s = math.cos(theta), math.sin(theta)  # as transform_fast computes them
         margins = None
-        for i in range(n):
+        for i, (ax, ay, tx, ty, w) in enumerate(self._capsules):
             if parallel and i + 1 in parallel:
                 d = self._cone_exact(pose, i, others)
             elif near:
-                ax, ay, tx, ty, w = self._capsules[i]
                 x0 = c * ax - s * ay + x
                 x1 = c * tx - s * ty + x
                 y0 = s * ax + c * ay + y

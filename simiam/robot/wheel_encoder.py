@@ -3,8 +3,7 @@
 from __future__ import annotations
 
 import math
-
-from simiam.robot.rounding import round_half_away
+from math import floor
 
 PI = math.pi
 TWO_PI = 2 * math.pi  # exact: a doubling
@@ -24,7 +23,16 @@ class WheelEncoder:
         """Advance by wheel speed `vel` (rad/s, the limited speed) over dt; returns the ticks added."""
         residual = self.residual + vel * dt
         tpr = self.ticks_per_rev
-        k = round_half_away(residual * tpr / TWO_PI)
+        x = residual * tpr / TWO_PI
+        # round_half_away(x) written out, branch for branch (its docstring says why not floor(x + 0.5)):
+        # two encoders a step, and the call was a third of the update
+        if x >= 0.0:
+            k = floor(x)
+            if x - k >= 0.5:
+                k += 1
+        else:
+            k = floor(-x)
+            k = -k - 1 if k + x <= -0.5 else -k
         self.residual = residual - k * 2 * PI / tpr  # (k*2)*pi/tpr, in this order
         self.ticks += k
         return k
