@@ -97,6 +97,9 @@ class RobotSurfaces:
         self._open: Sensed = ((spec.ir_max_range,) * len(self.cones), (self._raw_nothing,) * len(self.cones))
         self._open_step = (False, *self._open)
         self._ranging = (spec.ir_min_range, spec.ir_max_range, spec.ir_mode)
+        # (x, y, gap): from a body origin within gap of (x, y) in x and in y, the cones' reach meets no
+        # obstacle's box (`step` skips the look-up there; `_clearance`); none known at first
+        self._clear = (0.0, 0.0, -1.0)
         self._capsules = [_capsule(cone) for cone in self.cones]
         # the plate's nearby obstacles are those of the cones' reach that lie within its own (see `step`)
         self._plate_within_ir = self._plate_reach <= self._ir_reach
@@ -121,7 +124,13 @@ class RobotSurfaces:
         which look up the nearby obstacles and the near-parallel surfaces once each; this looks them up
         once for both (the plate's obstacles are among the cones', whose reach is longer)."""
         x, y, theta = pose
-        near = boxes_near(self.obstacles.polygons, x, y, self._ir_reach)
+        cx, cy, gap = self._clear
+        if -gap <= x - cx <= gap and -gap <= y - cy <= gap:  # still in the clear square: nothing near
+            near = []
+        else:
+            near = boxes_near(self.obstacles.polygons, x, y, self._ir_reach)
+            if not near:
+                self._clear = (x, y, self._clearance(x, y))
         lo, hi = self._parallel.free
         quick = self._quick
         if lo < theta < hi and -quick < x < quick and -quick < y < quick:  # `_flagged`'s shortcut, inline
@@ -138,6 +147,14 @@ class RobotSurfaces:
             return True, None, None
         ranges, raws = self._sense(pose, near, parallel, ())
         return False, ranges, raws
+
+    def _clearance(self, x: float, y: float) -> float:
+        """How far (in x and in y) the body origin may move from (x, y), where no obstacle is near for the
+        cones' reach, with none coming near: each box stays apart, on the side where it is now, by its
+        margin there, less 1e-9 m, far more than the rounding of x + reach and of these differences."""
+        r = self._ir_reach
+        return min((max(p[0] - (x + r), (x - r) - p[1], p[2] - (y + r), (y - r) - p[3])
+                    for p in self.obstacles.polygons), default=math.inf) - 1e-9
 
     def _collides(self, pose: Pose, near: list[PolygonBox], parallel: bool,
                   others: Sequence[ObstacleEdges]) -> bool:

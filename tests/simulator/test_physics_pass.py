@@ -81,3 +81,45 @@ def test_a_cull_without_the_cones_width_is_caught():
         wide = every_cone_placed(obstacles)
         differ += sum(answers(surfaces, pose) != answers(wide, pose) for pose in sweep(world))
     assert differ > 0
+
+
+def walks(world: str):
+    """A robot's poses driving from the middle of the world out to its walls in 1 cm steps, turning."""
+    for k in range(16):
+        heading = k * math.pi / 8 + 0.1
+        for i in range(200):
+            x, y = -0.9 + 0.01 * i * math.cos(heading), -0.9 + 0.01 * i * math.sin(heading)
+            yield (x, y, heading + 0.002 * i)
+
+
+def walk_differs(world: str) -> int:
+    """How many poses of the walks the one pass (with its clear square, carried from pose to pose)
+    answers otherwise than `collides` then `sense` (which look everything up every time)."""
+    surfaces = RobotSurfaces(SPEC, WORLDS[world])
+    differ = 0
+    for pose in walks(world):
+        collided, ranges, raws = surfaces.step(pose)
+        want = surfaces.collides(pose)
+        if not want:
+            want_ranges, want_raws = surfaces.sense(pose)
+            differ += (collided, bits(ranges), raws) != (False, bits(want_ranges), want_raws)
+        else:
+            differ += not collided
+    return differ
+
+
+def test_the_clear_square_holds_while_driving_at_walls():
+    for world in WORLDS:
+        assert walk_differs(world) == 0
+        surfaces = RobotSurfaces(SPEC, WORLDS[world])
+        skipped = 0
+        for pose in walks(world):
+            cx, cy, gap = surfaces._clear
+            skipped += abs(pose[0] - cx) <= gap and abs(pose[1] - cy) <= gap
+            surfaces.step(pose)
+        assert skipped > 500  # the square really saves look-ups
+
+
+def test_a_clear_square_that_forgets_the_cones_reach_is_caught(monkeypatch):
+    wrong("clear_square_no_reach").install(monkeypatch)
+    assert sum(walk_differs(world) for world in WORLDS) > 0
