@@ -164,7 +164,7 @@ def _points(p: Any, n: int) -> list[list[float]] | None:
     if type(p) is list and len(p) == 2 and n <= MAX_POINTS:  # the common case: two lists of n floats
         xs, ys = p
         if (type(xs) is list and type(ys) is list and len(xs) == n and len(ys) == n
-                and set(map(type, xs)) == _FLOAT and set(map(type, ys)) == _FLOAT):
+                and set(map(type, xs + ys)) == _FLOAT):
             # what the loop below gives them: None unless each row's sum is finite
             tx = sum(xs)
             ty = sum(ys)
@@ -226,7 +226,11 @@ def clean_debug(debug: Any, signals: tuple[Signal, ...], n_ir: int, plan: Plan |
     get = debug.get
     out = {}
     for name, rule, n in plan or debug_plan(signals, n_ir):  # a loop: cheaper than a comprehension's call
-        out[name] = rule(get(name), n)
+        x = get(name)
+        if rule is _scalar and type(x) is float and x - x == 0.0:  # `_scalar`'s common case, without the call
+            out[name] = x
+        else:
+            out[name] = rule(x, n)
     return out
 
 
