@@ -218,7 +218,7 @@ class RobotSurfaces:
                     margins = self._ir_margins
                     if not (-self._extent < x < self._extent and -self._extent < y < self._extent):
                         margins = self._margins(max(abs(x), abs(y)), self._ir_reach, self._ir_size)
-                found = cone_range(xs, ys, near, lo, hi, margins)
+                found = cone_range(xs, ys, near, lo, hi, margins, (x0, x1, y0, y1))  # the capsule's box
                 if found is None:
                     d = self._cone_exact(pose, i, others)
                 elif found[0] == hi and not found[1]:  # nothing crossed this cone

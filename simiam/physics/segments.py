@@ -143,7 +143,8 @@ def _decide(d: float, na: float, nb: float, big: float) -> bool | None:
 
 
 def culled_crossings(xs: Sequence[float], ys: Sequence[float], polygons: Sequence[PolygonBox],
-                     margins: Tolerance | None = None) -> Iterator[Hit | None]:
+                     margins: Tolerance | None = None,
+                     box: tuple[float, float, float, float] | None = None) -> Iterator[Hit | None]:
     """The crossings of the closed polygon with world vertices (xs, ys) against `polygons`, with
     bounding-box culling that only skips pairs whose padded boxes are apart.
 
@@ -162,13 +163,20 @@ def culled_crossings(xs: Sequence[float], ys: Sequence[float], polygons: Sequenc
     Where |d| >= `steady` = big*(1 + 4/BAND), u = n/d moves by at most (|u| + 1)*BAND/4 plus rounding, so
     u below -BAND or above 1 + BAND stays outside [0, 1] and u within [BAND, 1 - BAND] inside; everything
     else goes to `_decide`, which compares d, n_a and n_b with the margins themselves.
+
+    `box` (xmin, xmax, ymin, ymax), when the caller knows one that holds every vertex (with `margins`),
+    saves working out the vertices' own: it only culls obstacles and their edges, and every pair that
+    goes on is tested on the polygon edge's own box, inside either, so the same pairs are tested.
     """
     if not polygons:
         return
-    pxmin = min(xs)
-    pxmax = max(xs)
-    pymin = min(ys)
-    pymax = max(ys)
+    if box is None or margins is None:
+        pxmin = min(xs)
+        pxmax = max(xs)
+        pymin = min(ys)
+        pymax = max(ys)
+    else:
+        pxmin, pxmax, pymin, pymax = box
     n = len(xs)
     if margins is None:
         margins = tolerance(0.0, (pxmax - pxmin) + (pymax - pymin)
