@@ -1,7 +1,7 @@
 """Every float the simulator produces, bit for bit, before and after a change to the step (issue 24).
 
-    python benchmarks/step_identity.py record OUT.json.gz [--quick]
-    python benchmarks/step_identity.py compare OUT.json.gz [--quick]
+    python benchmarks/step_identity.py record OUT.json.gz [--quick] [--only TEXT]
+    python benchmarks/step_identity.py compare OUT.json.gz [--quick] [--only TEXT]
 
 `record` runs the scenarios below and writes every trace (every column of every step, the collision and
 the ending; floats as float.hex, so -0.0 and the last bit count) to OUT; `compare` runs them again and
@@ -16,7 +16,8 @@ reference brains and constant wheel speeds from seeded random starts in the obst
 collisions (so the collision path and the exact boundary path run too); a Fleet of two; and `simiam run
 weekN --solutions` itself (its trace JSON, less the folder it names). It prints how many times the exact
 (fused-arithmetic) path ran, so that a comparison that never reached it is seen to be one.
-Takes about 1-3 minutes on 2 cores (`--quick`: the solutions, the reference brains and the Fleet only).
+Takes about 1-3 minutes on 2 cores (`--quick`: the solutions, the reference brains and the Fleet only;
+`--only TEXT`: the scenarios whose name holds TEXT, e.g. `solution/week3`).
 """
 
 from __future__ import annotations
@@ -194,6 +195,7 @@ def main() -> int:
     parser.add_argument("mode", choices=("record", "compare"))
     parser.add_argument("path", type=Path)
     parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--only", default="", help="run only the scenarios whose name holds this text")
     args = parser.parse_args()
     exact_calls = [0]
     original = robot_surfaces.transform_exact
@@ -213,6 +215,8 @@ def main() -> int:
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="step-identity-") as tmp:
         for name, scenario in scenarios(args.quick, Path(tmp)):
+            if args.only not in name:
+                continue
             traces = scenario()
             rec = [t if isinstance(t, dict) else record_of(t) for t in traces]
             steps += sum(len(r["steps"]["t"]) for r in rec)
@@ -232,7 +236,7 @@ def main() -> int:
         print(f"recorded: {args.path}")
         return 0
     assert before is not None
-    missing = sorted(set(before) - set(out))
+    missing = sorted(name for name in set(before) - set(out) if args.only in name)
     for line in differ + [f"{m}: recorded, not run now" for m in missing]:
         print(f"DIFFERS {line}")
     if differ or missing:
