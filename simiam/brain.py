@@ -101,7 +101,7 @@ def validate_command(command: Any, signals: tuple[Signal, ...] = _DEFAULT, n_ir:
     state = get("state")
     if state is not None and not isinstance(state, str):
         raise BrainError(f"state must be a string, got {type(state).__name__}")
-    return {"vel_r": vel_r, "vel_l": vel_l, "estimate": est,  # type: ignore[return-value]
+    return {"vel_r": vel_r, "vel_l": vel_l, "estimate": est,
             "state": None if state is None else state[:STATE_CHARS],
             "debug": clean_debug(get("debug"), signals, n_ir, plan)}
 

@@ -118,8 +118,8 @@ class RobotSurfaces:
             near += [o.polygons[0] for o in others]
         return self._sense(pose, near, self._flagged(pose), others)
 
-    def step(self, pose: Pose) -> tuple[bool, tuple[float, ...], tuple[int, ...]] | tuple[bool, None, None]:
-        """A lone robot's physics pass at `pose`: (True, None, None) when the plate touches an obstacle,
+    def step(self, pose: Pose) -> tuple[bool, tuple[float, ...], tuple[int, ...]]:
+        """A lone robot's physics pass at `pose`: (True, (), ()) when the plate touches an obstacle,
         else (False, ranges, raws) as `sense` gives them. The same answers as `collides` then `sense`,
         which look up the nearby obstacles and the near-parallel surfaces once each; this looks them up
         once for both (the plate's obstacles are among the cones', whose reach is longer)."""
@@ -144,7 +144,7 @@ class RobotSurfaces:
         else:
             plate_near = self.obstacles.near(x, y, self._plate_reach)
         if self._collides(pose, plate_near, 0 in parallel, ()):
-            return True, None, None
+            return True, (), ()  # no IR pass after a collision (the original's apply_physics returns)
         ranges, raws = self._sense(pose, near, parallel, ())
         return False, ranges, raws
 
