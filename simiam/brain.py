@@ -13,7 +13,6 @@ from typing import Any, Protocol, TypedDict
 from simiam.robot.quickbot import IR_MOUNTS
 from simiam.signals import WEEKS_1_TO_4, Plan, Signal, clean_debug, declared, real
 
-_FLOAT = {float}
 STATE_CHARS = 80  # a state name (a student picks it; it is shown in the replay, the report and the terminal)
 
 
@@ -82,22 +81,33 @@ def validate_command(command: Any, signals: tuple[Signal, ...] = _DEFAULT, n_ir:
     """
     if not isinstance(command, dict):
         raise BrainError(f"the command must be a dict, got {type(command).__name__}")
-    out: dict = {}
-    for key in ("vel_r", "vel_l"):
-        val = command.get(key)
-        if not real(val):
-            raise BrainError(f"{key} must be a finite number (rad/s), got {val!r:.60}")
-        out[key] = float(val)
-    est = command.get("estimate")
-    if type(est) is list and len(est) == 3 and set(map(type, est)) == _FLOAT:  # the common case
-        total = est[0] + est[1] + est[2]
-        est = list(est) if total - total == 0.0 else _estimate(est)  # an overflowing sum: the long way
+    get = command.get
+    vel_r = get("vel_r")
+    if type(vel_r) is not float or vel_r - vel_r != 0.0:  # not the common case: a finite float, kept as is
+        vel_r = _speed("vel_r", vel_r)
+    vel_l = get("vel_l")
+    if type(vel_l) is not float or vel_l - vel_l != 0.0:
+        vel_l = _speed("vel_l", vel_l)
+    est = get("estimate")
+    if type(est) is list and len(est) == 3:
+        x, y, theta = est
+        if type(x) is float and type(y) is float and type(theta) is float:  # the common case
+            total = x + y + theta  # one finiteness test for the three; an overflowing sum: the long way
+            est = [x, y, theta] if total - total == 0.0 else _estimate(est)
+        else:
+            est = _estimate(est)
     elif est is not None:
         est = _estimate(est)
-    out["estimate"] = est
-    state = command.get("state")
+    state = get("state")
     if state is not None and not isinstance(state, str):
         raise BrainError(f"state must be a string, got {type(state).__name__}")
-    out["state"] = None if state is None else state[:STATE_CHARS]
-    out["debug"] = clean_debug(command.get("debug"), signals, n_ir, plan)
-    return out  # type: ignore[return-value]
+    return {"vel_r": vel_r, "vel_l": vel_l, "estimate": est,
+            "state": None if state is None else state[:STATE_CHARS],
+            "debug": clean_debug(get("debug"), signals, n_ir, plan)}
+
+
+def _speed(key: str, val: Any) -> float:
+    """A wheel speed that is not a finite float: a finite int becomes a float; anything else is refused."""
+    if not real(val):
+        raise BrainError(f"{key} must be a finite number (rad/s), got {val!r:.60}")
+    return float(val)

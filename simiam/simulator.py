@@ -31,6 +31,7 @@ __all__ = ["Brain", "BrainError", "Command", "ConstantBrain", "Ending", "EndReas
            "StepRecord", "add_row", "run_steps", "validate_command"]
 
 Pose = tuple[float, float, float]
+_new_tuple = tuple.__new__
 
 
 class StepRecord(NamedTuple):
@@ -83,8 +84,13 @@ class Simulator:
         self._collided = False
         self._first_collision: dict | None = None
         self._surfaces = RobotSurfaces(spec, world.obstacles)
-        self._ir_range = [spec.ir_max_range] * self._n_ir
-        self._ir_raw = [0] * self._n_ir
+        # what every step reads of the spec, looked up once
+        self._wheels = (spec.wheel_radius, spec.wheel_base_length)
+        self._brain_first = spec.brain_first
+        self._limits = (spec.max_vel, spec.min_vel)
+        # the IR values are tuples (RobotSurfaces.sense's): records and properties share them uncopied
+        self._ir_range: tuple[float, ...] = (spec.ir_max_range,) * self._n_ir
+        self._ir_raw: tuple[int, ...] = (0,) * self._n_ir
         self._update_ir()
         self._last: StepRecord = self._record(None)
 
@@ -102,12 +108,12 @@ class Simulator:
     @property
     def ir_raw(self) -> tuple[int, ...]:
         """The raw IR values (one per sensor) computed at the end of the last step."""
-        return tuple(self._ir_raw)
+        return self._ir_raw
 
     @property
     def ir_range(self) -> tuple[float, ...]:
         """The true IR ranges (m) behind `ir_raw`."""
-        return tuple(self._ir_range)
+        return self._ir_range
 
     @property
     def wheel_speeds(self) -> tuple[float, float]:
@@ -170,11 +176,11 @@ class Simulator:
         return self._surfaces.collides((self._x, self._y, self._theta), others)
 
     def _move(self) -> None:
-        spec = self.spec
-        self._x, self._y, self._theta = move(self._x, self._y, self._theta, self._vel_r, self._vel_l,
-                                             spec.wheel_radius, spec.wheel_base_length, self.dt)
-        self._enc_r.update(self._vel_r, self.dt)
-        self._enc_l.update(self._vel_l, self.dt)
+        R, L = self._wheels
+        vel_r, vel_l, dt = self._vel_r, self._vel_l, self.dt
+        self._x, self._y, self._theta = move(self._x, self._y, self._theta, vel_r, vel_l, R, L, dt)
+        self._enc_r.update(vel_r, dt)
+        self._enc_l.update(vel_l, dt)
 
     def _think(self, t: float) -> Command:
         readings: Readings = {"t": t, "dt": self.dt, "ticks": [self._enc_r.ticks, self._enc_l.ticks],
@@ -185,28 +191,36 @@ class Simulator:
             self._brain_exception = exc  # run() ends on this one; anything else raised in a step is a bug
             raise
         command = validate_command(answer, self.signals, self._n_ir, self._plan)
-        self._vel_r, self._vel_l = limit_speeds(command["vel_r"], command["vel_l"],
-                                                self.spec.max_vel, self.spec.min_vel)
+        max_vel, min_vel = self._limits
+        self._vel_r, self._vel_l = limit_speeds(command["vel_r"], command["vel_l"], max_vel, min_vel)
         return command
 
     def _record(self, command: Command | None) -> StepRecord:
-        return StepRecord(self._k, self._k * self.dt, (self._x, self._y, self._theta),
-                          (self._enc_r.ticks, self._enc_l.ticks), tuple(self._ir_raw), tuple(self._ir_range),
-                          self._vel_r, self._vel_l, command, self._collided)
+        # tuple.__new__ builds the same StepRecord as StepRecord(...) without its Python-level __new__
+        return _new_tuple(StepRecord, (self._k, self._k * self.dt, (self._x, self._y, self._theta),
+                                       (self._enc_r.ticks, self._enc_l.ticks), self._ir_raw, self._ir_range,
+                                       self._vel_r, self._vel_l, command, self._collided))
 
     def step(self) -> StepRecord:
         """Advance one time step in the original's order; returns the new state."""
         command = self._advance()
-        if not self._collide():
-            self._update_ir()
-        return self._finish(command)
+        # `_collide` then `_update_ir`, in one physics pass (a Fleet's robots take the two apart)
+        collided, ranges, raws = self._surfaces.step((self._x, self._y, self._theta))
+        if collided:
+            self._hit(True)
+        else:
+            self._collided = False
+            self._ir_range = ranges
+            self._ir_raw = raws
+        self._last = record = self._record(command)
+        return record
 
     # The three phases of a step, separate so that a Fleet can run the physics of all robots together.
     def _advance(self) -> Command:
         """Move and run the brain (week 1: the brain first); returns the validated command."""
         self._k += 1
         t = self._k * self.dt
-        if self.spec.brain_first:
+        if self._brain_first:
             command = self._think(t)
             self._move()
         else:
@@ -216,11 +230,15 @@ class Simulator:
 
     def _collide(self, others: Sequence[ObstacleEdges] = ()) -> bool:
         """The collision check at the new pose; remembers the first collision."""
-        self._collided = self._check_collision(others)
-        if self._collided and self._first_collision is None:
+        return self._hit(self._check_collision(others))
+
+    def _hit(self, collided: bool) -> bool:
+        """Keep the collision verdict at the new pose (and the first collision); returns it."""
+        self._collided = collided
+        if collided and self._first_collision is None:
             self._first_collision = {"step": self._k, "t": self._k * self.dt,
                                      "pose": [self._x, self._y, self._theta]}
-        return self._collided
+        return collided
 
     def _finish(self, command: Command | None) -> StepRecord:
         self._last = self._record(command)

@@ -39,8 +39,8 @@ def cone_range_exact(cone: Sequence[Sequence[float]], obstacles: Sequence[Surfac
 
 
 def cone_range(xs: Sequence[float], ys: Sequence[float], polygons: Sequence[PolygonBox],
-               min_range: float, max_range: float,
-               margins: Tolerance | None = None) -> tuple[float, float] | None:
+               min_range: float, max_range: float, margins: Tolerance | None = None,
+               box: tuple[float, float, float, float] | None = None) -> tuple[float, float] | None:
     """`cone_range_exact` for the cone's world vertices (xs, ys; apex first) against `polygons`
     (`ObstacleEdges.polygons` or the candidates from `ObstacleEdges.near`), with bounding-box culling that
     only skips pairs whose padded boxes are apart.
@@ -49,12 +49,13 @@ def cone_range(xs: Sequence[float], ys: Sequence[float], polygons: Sequence[Poly
     from segments.tolerance; default: these are the original's vertices) the original's
     test finds the same crossings, and its range lies within `error` of this one; None when some crossing
     might be found or lost (then ask `cone_range_exact` on the original's vertices). Near-collinear edges
-    whose boxes are apart are simiam.physics.parallel's to find."""
+    whose boxes are apart are simiam.physics.parallel's to find. `box`: a box holding the vertices, if
+    known (segments.culled_crossings)."""
     ax = xs[0]
     ay = ys[0]
     d_min = max_range
     error = 0.0
-    for hit in culled_crossings(xs, ys, polygons, margins):
+    for hit in culled_crossings(xs, ys, polygons, margins, box):
         if hit is None:
             return None
         px, py, e = hit

@@ -91,8 +91,14 @@ class ObstacleEdges:
     def near(self, x: float, y: float, reach: float) -> list[PolygonBox]:
         """The obstacles whose padded box meets the square of half-side `reach` around (x, y): everything
         a body lying within `reach` of (x, y) could touch."""
-        return [p for p in self.polygons
-                if not (x + reach < p[0] or x - reach > p[1] or y + reach < p[2] or y - reach > p[3])]
+        return boxes_near(self.polygons, x, y, reach)
+
+
+def boxes_near(polygons: Sequence[PolygonBox], x: float, y: float, reach: float) -> list[PolygonBox]:
+    """`ObstacleEdges.near` among `polygons`, in their order. Among the boxes near (x, y) for a longer
+    reach it finds the same as among all: x + reach and the other bounds round monotonically in reach."""
+    return [p for p in polygons
+            if not (x + reach < p[0] or x - reach > p[1] or y + reach < p[2] or y - reach > p[3])]
 
 
 # The fast loop's band, in units of the edge parameters: outside [-BAND, BAND] and [1 - BAND, 1 + BAND]
@@ -137,7 +143,8 @@ def _decide(d: float, na: float, nb: float, big: float) -> bool | None:
 
 
 def culled_crossings(xs: Sequence[float], ys: Sequence[float], polygons: Sequence[PolygonBox],
-                     margins: Tolerance | None = None) -> Iterator[Hit | None]:
+                     margins: Tolerance | None = None,
+                     box: tuple[float, float, float, float] | None = None) -> Iterator[Hit | None]:
     """The crossings of the closed polygon with world vertices (xs, ys) against `polygons`, with
     bounding-box culling that only skips pairs whose padded boxes are apart.
 
@@ -156,13 +163,20 @@ def culled_crossings(xs: Sequence[float], ys: Sequence[float], polygons: Sequenc
     Where |d| >= `steady` = big*(1 + 4/BAND), u = n/d moves by at most (|u| + 1)*BAND/4 plus rounding, so
     u below -BAND or above 1 + BAND stays outside [0, 1] and u within [BAND, 1 - BAND] inside; everything
     else goes to `_decide`, which compares d, n_a and n_b with the margins themselves.
+
+    `box` (xmin, xmax, ymin, ymax), when the caller knows one that holds every vertex (with `margins`),
+    saves working out the vertices' own: it only culls obstacles and their edges, and every pair that
+    goes on is tested on the polygon edge's own box, inside either, so the same pairs are tested.
     """
     if not polygons:
         return
-    pxmin = min(xs)
-    pxmax = max(xs)
-    pymin = min(ys)
-    pymax = max(ys)
+    if box is None or margins is None:
+        pxmin = min(xs)
+        pxmax = max(xs)
+        pymin = min(ys)
+        pymax = max(ys)
+    else:
+        pxmin, pxmax, pymin, pymax = box
     n = len(xs)
     if margins is None:
         margins = tolerance(0.0, (pxmax - pxmin) + (pymax - pymin)

@@ -79,8 +79,16 @@ class RobotSpec:
 
 def limit_speeds(vel_r: float, vel_l: float, max_vel: float, min_vel: float) -> tuple[float, float]:
     """`QuickBot.limit_speeds`: clamp to +-max_vel, then the strict dead zone (kept when |w| >= min_vel)."""
-    vel_r = max(min(vel_r, max_vel), -max_vel)
-    vel_l = max(min(vel_l, max_vel), -max_vel)
+    # max(min(v, max_vel), -max_vel) without the calls: min keeps v unless max_vel < v, max keeps it unless
+    # -max_vel > it (the same value for every v, -0.0 and nan included)
+    if vel_r > max_vel:
+        vel_r = max_vel
+    if vel_r < -max_vel:
+        vel_r = -max_vel
+    if vel_l > max_vel:
+        vel_l = max_vel
+    if vel_l < -max_vel:
+        vel_l = -max_vel
     if abs(vel_r) < min_vel:
         vel_r = 0.0
     if abs(vel_l) < min_vel:

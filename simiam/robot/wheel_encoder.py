@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import math
+from math import floor
 
-from simiam.robot.rounding import round_half_away
+PI = math.pi
+TWO_PI = 2 * math.pi  # exact: a doubling
 
 
 class WheelEncoder:
@@ -19,8 +21,18 @@ class WheelEncoder:
 
     def update(self, vel: float, dt: float) -> int:
         """Advance by wheel speed `vel` (rad/s, the limited speed) over dt; returns the ticks added."""
-        self.residual += vel * dt
-        k = round_half_away(self.residual * self.ticks_per_rev / (2 * math.pi))
-        self.residual -= k * 2 * math.pi / self.ticks_per_rev
+        residual = self.residual + vel * dt
+        tpr = self.ticks_per_rev
+        x = residual * tpr / TWO_PI
+        # round_half_away(x) written out, branch for branch (its docstring says why not floor(x + 0.5)):
+        # two encoders a step, and the call was a third of the update
+        if x >= 0.0:
+            k = floor(x)
+            if x - k >= 0.5:
+                k += 1
+        else:
+            k = floor(-x)
+            k = -k - 1 if k + x <= -0.5 else -k
+        self.residual = residual - k * 2 * PI / tpr  # (k*2)*pi/tpr, in this order
         self.ticks += k
         return k

@@ -119,3 +119,34 @@ def test_worker_start_prints_every_piece_or_says_why_not():
                   "bubblewrap -- python: the worker's preloads", "fresh process: imports + a bare worker"):
         figure = re.search(rf"^{re.escape(piece)} +([0-9.]+) ms CPU median", done.stdout, re.M)
         assert figure and float(figure.group(1)) > 0, piece
+
+
+def test_step_parts_prints_machine_baseline_and_each_part():
+    out = _script("benchmarks/step_parts.py", "--steps", "30", "--repeat", "1")
+    assert MACHINE.search(out) and LOAD_AFTER.search(out)
+    assert re.search(r"^step, CPU us .*: [0-9.]+ \([0-9.]+x the flat-loop baseline", out, re.M)
+    for part in ("brain", "command validation", "physics pass", "the rest"):
+        assert re.search(rf"^  {part}.*: -?[0-9.]+ us \(-?[0-9.]+x baseline\)", out, re.M), part
+
+
+def test_step_identity_finds_one_changed_bit(tmp_path):
+    """The comparison of issue 24: a recording compares identical with itself, and one trace value one
+    bit off (a wrong version of the step, as the recording sees it) is found and named."""
+    import gzip
+    import json
+
+    record = tmp_path / "before.json.gz"
+    out = _script("benchmarks/step_identity.py", "record", str(record), "--only", "solution/week2/start")
+    assert "1 scenarios" in out
+    assert "identical" in _script("benchmarks/step_identity.py", "compare", str(record), "--only",
+                                  "solution/week2/start")
+    with gzip.open(record, "rt") as f:
+        data = json.load(f)
+    ts = data["solution/week2/start"][0]["steps"]["t"]
+    k = len(ts) // 2  # t > 0 there
+    ts[k] = float.hex(float.fromhex(ts[k]) * (1 + 2.0 ** -52))  # the last bit
+    with gzip.open(record, "wt") as f:
+        json.dump(data, f)
+    done = subprocess.run([sys.executable, "benchmarks/step_identity.py", "compare", str(record), "--only",
+                           "solution/week2/start"], cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 1 and f"DIFFERS solution/week2/start[0].steps.t[{k}]" in done.stdout
