@@ -10,6 +10,7 @@ from an edge's end point to an edge of the other polygon, computed as GEOS compu
 
 from __future__ import annotations
 
+import cmath
 import math
 from collections.abc import Sequence
 
@@ -57,9 +58,10 @@ def directions(shapes: Sequence[Shape], most: int = 4) -> list[tuple[float, floa
     turned by 45 degrees the two turned ones; any direction gives a true bound, these give tight ones)."""
     count: dict[int, int] = {}
     for shape in shapes:
-        for (ax, ay), (bx, by) in shape.edges:
-            if (ax, ay) != (bx, by):  # in thousandths of a radian: walls a hair off square count as square
-                mrad = round(math.atan2(by - ay, bx - ax) % math.pi * 1000) % round(math.pi * 1000)
+        for a, b in shape.edges:
+            if a != b:  # in thousandths of a radian: walls a hair off square count as square
+                along = complex(*b) - complex(*a)
+                mrad = round(cmath.phase(along) % math.pi * 1000) % round(math.pi * 1000)
                 count[mrad] = count.get(mrad, 0) + 1
     ranked = sorted(count, key=lambda a: (-count[a], a))[:most] or [0, round(math.pi * 500)]
     return [(math.cos(a / 1000), math.sin(a / 1000)) for a in ranked]
