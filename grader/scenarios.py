@@ -19,6 +19,7 @@ from grader import reference as ref
 from grader.checks import Context
 from grader.margins import CLEARANCE, Limit, Margins
 from grader.sandbox.errors import SandboxError, StudentTimeout
+from grader.sandbox.same_core import SameCore
 from simiam.signals import week_signals
 from simiam.simulator import Simulator, StepRecord
 from simiam.trace import EndReason, Trace
@@ -48,10 +49,10 @@ class Run:
         return s["x"][-1], s["y"][-1], s["theta"][-1]
 
 
-def _brain(ctx: Context, settings: dict[str, Any], session: Any = None):
+def _brain(ctx: Context, settings: dict[str, Any], session: Any = None, cpu: int | None = None):
     from grader.sandbox.session import RemoteBrain
 
-    return RemoteBrain(session if session is not None else ctx.session, settings)
+    return RemoteBrain(session if session is not None else ctx.session, settings, cpu=cpu)
 
 
 def run(
@@ -79,19 +80,21 @@ def run(
     result = Run(
         label, Trace(week=ctx.week, dt=config.dt, world=world.to_json(), robot={}, start=list(start))
     )
-    try:
-        brain = _brain(ctx, settings, session)
-        sim = Simulator(sim_goal, brain, ctx.spec, dt=config.dt, start=start, signals=week_signals(config))
-    except SandboxError as exc:
-        result.problem, result.sandbox_error = _words(exc, 0.0), exc
-        return result
     until = None if stop_rule is None else stop_rule(start)
     if goal is not None and goal_radius is not None:
         assert stop_rule is None, "a run stops at its goal or by its own rule, not both"
 
         def until(rec: StepRecord) -> bool:  # the TRUE position, never the student's estimate
             return math.dist(rec.pose[:2], goal) < goal_radius
-    trace = sim.run(seconds, until=until, stuck=(StudentTimeout,))
+    with SameCore() as cpu:  # the grader and the worker take turns: on one core (speed only)
+        try:
+            brain = _brain(ctx, settings, session, cpu)
+            sim = Simulator(sim_goal, brain, ctx.spec, dt=config.dt, start=start,
+                            signals=week_signals(config))
+        except SandboxError as exc:
+            result.problem, result.sandbox_error = _words(exc, 0.0), exc
+            return result
+        trace = sim.run(seconds, until=until, stuck=(StudentTimeout,))
     trace.meta = {"check_label": label, "seed": ctx.seed,
                   "numerics": getattr(ctx.session, "numerics", None)}  # what ran the student's code
     result.trace = trace

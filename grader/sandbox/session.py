@@ -417,14 +417,15 @@ class RemoteBrain:
     """
 
     def __init__(self, session: StudentSession, settings: dict | None = None,
-                 step_timeout: float | None = None) -> None:
+                 step_timeout: float | None = None, cpu: int | None = None) -> None:
         self.session = session
         self.settings = settings
         self.step_timeout = step_timeout
+        self.cpu = cpu  # the core the grading thread keeps to for this run (grader.sandbox.same_core)
         self._started = False
 
     def step(self, readings: Mapping[str, Any]) -> Any:
         if not self._started:
-            self.session.call("brain_start", settings=self.settings)
+            self.session.call("brain_start", settings=self.settings, cpu=self.cpu)
             self._started = True
         return self.session.call("brain_step", timeout=self.step_timeout, readings=readings)
