@@ -17,7 +17,7 @@ from collections.abc import Callable
 from grader import earlier, scenarios
 from grader import reference as ref
 from grader.checks import Check, Context, Mismatch, Outcome
-from grader.checks.answers import fmt, vector
+from grader.checks.answers import floats, fmt, vector
 from grader.domains import Floats, Integers, SampledFrom
 from grader.margins import Limit, Margins
 from grader.properties import run_property
@@ -66,11 +66,12 @@ def _blends(ctx: Context, pairs: list[tuple[tuple[float, float], tuple[float, fl
         raise Mismatch("AOandGTG.execute gave no answer")
     out = []
     for (u_gtg, u_ao), got in zip(pairs, answer, strict=True):
-        where = f"with u_gtg = {_vec(u_gtg)} and u_ao = {_vec(u_ao)} your u_ao_gtg"
         raw = got.get("u_ao_gtg") if isinstance(got, dict) else None
         if isinstance(raw, list) and all(isinstance(c, list) and len(c) == 1 for c in raw):
             raw = [c[0] for c in raw]  # a 2x1 column is fine too
-        out.append(tuple(vector(raw, 2, where)))
+        plain = floats(raw, 2)  # the words of a wrong answer only for a wrong answer
+        out.append(tuple(plain if plain is not None else
+                         vector(raw, 2, f"with u_gtg = {_vec(u_gtg)} and u_ao = {_vec(u_ao)} your u_ao_gtg")))
     return out
 
 
