@@ -16,6 +16,7 @@ import ast
 import hashlib
 import re
 from dataclasses import dataclass
+from functools import lru_cache
 
 _MARKER = re.compile(r"^(?P<indent>[ \t]*)#+\s*(?P<kind>START|END)\s+CODE\s+BLOCK\b(?P<rest>.*)$", re.I)
 _WEEK_TAG = re.compile(r"week\s*(\d+)", re.I)
@@ -87,6 +88,13 @@ def marker(line: str) -> re.Match | None:
 
 def find_blocks(text: str, file: str) -> list[Block]:
     """All code blocks of `text`, in order. Raises BlockError for unbalanced or nested markers."""
+    return list(_blocks_of(text, file))
+
+
+@lru_cache(maxsize=256)
+def _blocks_of(text: str, file: str) -> tuple[Block, ...]:
+    """find_blocks's work, kept per text: a grading finds the blocks of the same skeletons and shipped files
+    for every student of a batch (Blocks are frozen; an error is raised again each time, not kept)."""
     lines = source_lines(text)
     spans: list[tuple[int, int, str, str]] = []  # (start index, end index, indent, tag)
     open_at: int | None = None
@@ -122,7 +130,7 @@ def find_blocks(text: str, file: str) -> list[Block]:
         blocks.append(
             Block(file, n, scope, seen[scope], s + 1, e + 1, indent, tag, "".join(lines[s + 1 : e]))
         )
-    return blocks
+    return tuple(blocks)
 
 
 def _scopes(lines: list[str], spans: list[tuple[int, int, str, str]]) -> list[str]:

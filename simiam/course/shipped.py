@@ -7,6 +7,7 @@ else from the packaged skeleton, whose blocks are placeholders because the packa
 
 from __future__ import annotations
 
+from functools import lru_cache
 from pathlib import Path
 
 from simiam.course.weeks import get_week
@@ -22,12 +23,18 @@ def files_to_write(week: int) -> set[str]:
 def shipped_version(week: int, name: str, root: Path = ROOT) -> str | None:
     """`name` as the course ships it in `week` (earlier weeks' blocks filled in), where the instructor's
     solutions/ is at hand (a checkout, official grading); None in a student's installation."""
-    from simiam.course.stubs import stub_text
-
     solution = root / "solutions" / f"week{week}" / name
     if not solution.is_file():
         return None
-    return stub_text(week, solution.read_text(encoding="utf-8"), name)[0]
+    return _stubbed(week, solution.read_text(encoding="utf-8"), name)
+
+
+@lru_cache(maxsize=128)
+def _stubbed(week: int, solution_text: str, name: str) -> str:
+    """The shipped text of a solution file, kept per text (a batch ships the same files to every student)."""
+    from simiam.course.stubs import stub_text
+
+    return stub_text(week, solution_text, name)[0]
 
 
 def missing_note(week: int, name: str, shipped: bool) -> str:
