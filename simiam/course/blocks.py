@@ -86,15 +86,17 @@ def marker(line: str) -> re.Match | None:
     return _MARKER.match(line.rstrip("\r\n"))
 
 
+_KEPT_TEXT = 64 * 1024  # characters: the course's files are a few KB; a larger text is not kept
+
+
 def find_blocks(text: str, file: str) -> list[Block]:
     """All code blocks of `text`, in order. Raises BlockError for unbalanced or nested markers."""
+    if len(text) <= _KEPT_TEXT:
+        return list(_kept_blocks(text, file))
     return list(_blocks_of(text, file))
 
 
-@lru_cache(maxsize=256)
 def _blocks_of(text: str, file: str) -> tuple[Block, ...]:
-    """find_blocks's work, kept per text: a grading finds the blocks of the same skeletons and shipped files
-    for every student of a batch (Blocks are frozen; an error is raised again each time, not kept)."""
     lines = source_lines(text)
     spans: list[tuple[int, int, str, str]] = []  # (start index, end index, indent, tag)
     open_at: int | None = None
@@ -131,6 +133,12 @@ def _blocks_of(text: str, file: str) -> tuple[Block, ...]:
             Block(file, n, scope, seen[scope], s + 1, e + 1, indent, tag, "".join(lines[s + 1 : e]))
         )
     return tuple(blocks)
+
+
+# find_blocks's work kept per text: a grading process finds the blocks of the same skeletons and shipped
+# files for every student of a batch. Blocks are frozen, an error is raised again each time (not kept), and
+# at most 256 texts of at most _KEPT_TEXT characters are kept (16 MB at worst, hostile files included).
+_kept_blocks = lru_cache(maxsize=256)(_blocks_of)
 
 
 def _scopes(lines: list[str], spans: list[tuple[int, int, str, str]]) -> list[str]:
