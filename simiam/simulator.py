@@ -206,14 +206,9 @@ class Simulator:
         command = self._advance()
         # `_collide` then `_update_ir`, in one physics pass (a Fleet's robots take the two apart)
         collided, ranges, raws = self._surfaces.step((self._x, self._y, self._theta))
-        if collided:
-            self._hit(True)
-        else:
-            self._collided = False
-            self._ir_range = ranges
-            self._ir_raw = raws
-        self._last = record = self._record(command)
-        return record
+        if not self._hit(collided):
+            self._ir_range, self._ir_raw = ranges, raws
+        return self._finish(command)
 
     # The three phases of a step, separate so that a Fleet can run the physics of all robots together.
     def _advance(self) -> Command:
