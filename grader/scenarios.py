@@ -204,11 +204,9 @@ def min_clearance(trace: Trace, world: World, spec, every: int = 1) -> float | N
     # a pose that is not a number is bounded by -inf: measured, and left out by measure()'s box test as
     # before (a NaN bound, which pose_bounds never gives, would upset the sort: kept out)
     finite = [i for i, b in enumerate(bounds) if b == b]
-    if finite:
-        measure(poses[min(finite, key=bounds.__getitem__)])
-    # every pose whose bound is not beyond the gap so far, nearest first: the gap falls fast, and once a
+    # the poses nearest first, while a bound is not beyond the gap so far: the gap falls fast, and once a
     # bound passes it (by more than any rounding) no later pose can be nearer
-    for i in sorted((i for i in finite if bounds[i] <= gap + clearance.SLACK), key=bounds.__getitem__):
+    for i in sorted(finite, key=bounds.__getitem__):
         if bounds[i] > gap + clearance.SLACK:
             break
         measure(poses[i])
