@@ -7,6 +7,7 @@
     grade all                        # every week
     grade week3 --batch submissions/ --jobs 4 --out graded/
     grade handout week3 --out release/   # and: grade package gradescope|prairielearn weekN, grade selfcheck
+    grade similarity week3 submissions/ --out graded/   # pairs of students whose code blocks look alike
 
 Exit status: 0 every check passed, 1 some check did not, 2 the command itself could not run.
 """
@@ -36,7 +37,8 @@ def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="grade", description="Grade a Control of Mobile Robots (QuickBot) assignment.",
         epilog="Instructors: grade handout weekN, grade package gradescope|prairielearn weekN, "
-               "grade selfcheck (grade handout --help, ...; see docs/platforms.md).",
+               "grade selfcheck (grade handout --help, ...; see docs/platforms.md); grade similarity weekN "
+               "SOURCE: similar code blocks in a class (docs/batch.md).",
     )
     p.add_argument("week", help=f"week{min(week_numbers())} .. week{max(week_numbers())}, or all")
     p.add_argument("path", nargs="?", default=None, help="submission folder (default: the current folder "
@@ -152,6 +154,10 @@ def main(argv: list[str] | None = None) -> int:
         from grader.platforms.cli import main as platforms_main
 
         return platforms_main(argv)
+    if argv and argv[0] == "similarity":
+        from grader.similarity.command import main as similarity_main
+
+        return similarity_main(argv[1:])
     parser = _parser()
     args = parser.parse_args(argv)
     try:
