@@ -19,7 +19,7 @@ from typing import TextIO
 from grader.batch.store import write_atomic, write_json
 from grader.batch.submissions import discover, read_submission
 from grader.similarity.compare import MAX_COMMON, compare
-from grader.similarity.fingerprints import K, WINDOW
+from grader.similarity.fingerprints import WINDOW, K
 from grader.similarity.page import print_top, report_json, similarity_html
 from grader.similarity.submitted import StudentCode, handout_blocks, handout_source, student_code
 from grader.untrusted import printable

@@ -12,11 +12,13 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from itertools import combinations
 
-from grader.similarity.fingerprints import K, WINDOW, kgram_hashes, winnow
+from grader.similarity.fingerprints import WINDOW, K, kgram_hashes, winnow
 from grader.similarity.submitted import ComparedBlock, StudentCode
 from grader.similarity.tokens import Token, block_tokens
 
 MAX_COMMON = 10        # MOSS's default: a passage in more submissions than this is common knowledge
+MAX_PLACES = 16        # places kept per fingerprint: a line repeated 10,000 times is marked 16 times, and a
+                       # pair's work stays bounded (places of one side times places of the other)
 
 
 @dataclass
@@ -49,8 +51,9 @@ def fingerprints(code: StudentCode, ignored: set[int] | frozenset[int] = frozens
         tokens = block_tokens(block.compared)
         prints.tokens.append(tokens)
         for value, pos in winnow(kgram_hashes([t.text for t in tokens])):
-            if value not in ignored and len(tokens) >= K:
-                prints.places.setdefault(value, []).append((index, pos))
+            places = prints.places.setdefault(value, []) if value not in ignored else None
+            if places is not None and len(places) < MAX_PLACES:
+                places.append((index, pos))
     return prints
 
 

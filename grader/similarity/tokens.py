@@ -82,15 +82,19 @@ def block_tokens(text: str) -> list[Token]:
 
 
 def _fallback(text: str, start: int) -> list[Token]:
-    out = []
+    out: list[Token] = []
     for m in _FALLBACK.finditer(text, start):
-        kind = m.lastgroup
-        if kind in ("comment", "space"):
+        kind, word = m.lastgroup, m.group()
+        if kind in ("comment", "space") or (kind == "newline" and out and out[-1].text == ";"):
             continue
-        word = {"name": lambda s: s if keyword.iskeyword(s) else "V", "number": _number,
-                "string": lambda s: "S", "newline": lambda s: ";"}.get(kind or "", lambda s: s)(m.group())
-        if word == ";" and out and out[-1].text == ";":
-            continue
+        if kind == "name":
+            word = word if keyword.iskeyword(word) else "V"
+        elif kind == "number":
+            word = _number(word)
+        elif kind == "string":
+            word = "S"
+        elif kind == "newline":
+            word = ";"
         out.append(Token(word, m.start(), m.end()))
     return out
 

@@ -16,8 +16,8 @@ from similarity_class import DATA, PLANTED, STUBS, ranking_problems
 
 from grader.cli import main as grade_main
 from grader.similarity import command
-from grader.similarity.compare import compare
 from grader.similarity.command import THRESHOLD, read_class, run
+from grader.similarity.compare import compare
 from grader.similarity.submitted import MAX_BLOCK_CHARS, handout_blocks, student_code
 from grader.similarity.tokens import block_tokens
 
@@ -97,12 +97,13 @@ def test_hostile_ids_zips_and_blocks(tmp_path: Path) -> None:
     evil = "<img src=x onerror=alert(1)>" + "x" * 100
     for sid in (evil, "copy"):
         shutil.copytree(sol, folder / sid, ignore=shutil.ignore_patterns("__pycache__"))
-    huge = "        # START CODE BLOCK\n" + "        zz = 'a' * 3  # " + "y" * 5_000_000 + "\n        # END CODE BLOCK\n"
+    huge = ("        # START CODE BLOCK\n        zz = 'a' * 3  # " + "y" * 5_000_000
+            + "\n        # END CODE BLOCK\n")
     gtg = (sol / "go_to_goal.py").read_text()
     (folder / "copy" / "go_to_goal.py").write_text(gtg.replace("# START CODE BLOCK", "# START CODE BLOCK\n"
                                                                "        '''", 1))
-    (folder / evil / "quickbot.py").write_text((sol / "quickbot.py").read_text() + "\nclass Z:\n    def f(self):\n"
-                                               + huge)
+    (folder / evil / "quickbot.py").write_text((sol / "quickbot.py").read_text()
+                                               + "\nclass Z:\n    def f(self):\n" + huge)
     (folder / "bidi\u202e").mkdir()
     (folder / "unbalanced").mkdir()
     (folder / "unbalanced" / "go_to_goal.py").write_text("# START CODE BLOCK\nx = 1\n")
