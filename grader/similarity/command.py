@@ -18,7 +18,7 @@ from typing import TextIO
 
 from grader.batch.store import write_atomic, write_json
 from grader.batch.submissions import discover, read_submission
-from grader.similarity.compare import MAX_COMMON, compare
+from grader.similarity.compare import MAX_COMMON, common_limit, compare
 from grader.similarity.fingerprints import WINDOW, K
 from grader.similarity.page import print_top, report_json, similarity_html
 from grader.similarity.submitted import StudentCode, handout_blocks, handout_source, student_code
@@ -43,9 +43,9 @@ def _parser() -> argparse.ArgumentParser:
                    "(default reports/similarity-weekN; the batch's --out folder is a good place)")
     p.add_argument("--threshold", type=float, default=THRESHOLD,
                    help=f"lowest score shown, 0..1 (default {THRESHOLD})")
-    p.add_argument("--common", type=int, default=MAX_COMMON,
-                   help=f"a passage found in more submissions than this counts for nobody "
-                        f"(default {MAX_COMMON}, as MOSS)")
+    p.add_argument("--common", type=int, default=None,
+                   help=f"a passage found in more submissions than this counts for nobody (default "
+                        f"{MAX_COMMON}, as MOSS, or a tenth of the class, whichever is more)")
     p.add_argument("--top", type=int, default=10, help="pairs printed (default 10)")
     return p
 
@@ -71,15 +71,16 @@ def read_class(source: Path, week: int, out: Path | None = None) -> tuple[list[S
     return codes, refused
 
 
-def run(week: int, source: Path, out: Path, threshold: float = THRESHOLD, common: int = MAX_COMMON,
+def run(week: int, source: Path, out: Path, threshold: float = THRESHOLD, common: int | None = None,
         top: int = 10, stream: TextIO | None = None) -> dict:
     """Compare the class in ``source``, write the page and the JSON to ``out``, print the best pairs to
     ``stream`` (if given); returns what similarity.json holds."""
     if not 0 <= threshold <= 1:
         raise SimilarityError(f"--threshold is a share between 0 and 1, not {threshold}")
-    if common < 2:
+    if common is not None and common < 2:
         raise SimilarityError(f"--common must be 2 or more, not {common}")
     codes, refused = read_class(source, week, out)
+    common = common_limit(len(codes)) if common is None else common
     pairs = compare(codes, handout_blocks(week), max_common=common)
     meta = {"week": week, "threshold": threshold, "k": K, "window": WINDOW, "common": common,
             "handout": handout_source(week)}

@@ -4,10 +4,13 @@ A pair's score is the share of the smaller side's fingerprints that the other si
 the shorter submission's code is in the longer one). Fingerprints of the handout's own blocks are
 nobody's, and so are those found in more than ``max_common`` submissions (MOSS's ``-m``: the formula
 every correct solution writes, ``vel_r = (2*v + w*L) / (2*R)``, is no sign of copying in a class of 400).
+By default that is 10 (MOSS's) or a tenth of the class, whichever is more: a solution passed around 30
+of 400 students still shows.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from itertools import combinations
@@ -17,6 +20,7 @@ from grader.similarity.submitted import ComparedBlock, StudentCode
 from grader.similarity.tokens import Token, block_tokens
 
 MAX_COMMON = 10        # MOSS's default: a passage in more submissions than this is common knowledge
+COMMON_SHARE = 0.1     # ... or in more than this share of the class, whichever is more
 MAX_PLACES = 16        # places kept per fingerprint: a line repeated 10,000 times is marked 16 times, and a
                        # pair's work stays bounded (places of one side times places of the other)
 
@@ -65,21 +69,27 @@ def all_kgrams(blocks: Sequence[ComparedBlock]) -> set[int]:
     return found
 
 
+def common_limit(students: int) -> int:
+    """The default ``max_common`` of a class of ``students``."""
+    return max(MAX_COMMON, math.ceil(COMMON_SHARE * students))
+
+
 def compare(codes: Sequence[StudentCode], handout: Sequence[ComparedBlock],
-            max_common: int | None = MAX_COMMON) -> list[Pair]:
-    """Every pair sharing a fingerprint, best score first (ties by the number shared, then by ids)."""
+            max_common: int | None = None) -> list[Pair]:
+    """Every pair sharing a fingerprint, best score first (ties by the number shared, then by ids).
+    ``max_common`` None: common_limit of the class."""
+    max_common = common_limit(len(codes)) if max_common is None else max_common
     ignored = all_kgrams(handout)
     prints = [fingerprints(code, ignored) for code in codes]
     holders: dict[int, list[int]] = {}
     for i, p in enumerate(prints):
         for value in p.places:
             holders.setdefault(value, []).append(i)
-    if max_common is not None:
-        common = {value for value, who in holders.items() if len(who) > max_common}
-        for p in prints:
-            for value in common & p.places.keys():
-                del p.places[value]
-        holders = {value: who for value, who in holders.items() if value not in common}
+    common = {value for value, who in holders.items() if len(who) > max_common}
+    for p in prints:
+        for value in common & p.places.keys():
+            del p.places[value]
+    holders = {value: who for value, who in holders.items() if value not in common}
     shared: dict[tuple[int, int], list[int]] = {}
     for value, who in holders.items():
         for i, j in combinations(who, 2):
@@ -121,4 +131,4 @@ def _spans(p: Prints, values: list[int]) -> dict[int, list[tuple[int, int]]]:
     return merged
 
 
-__all__ = ["K", "WINDOW", "MAX_COMMON", "Pair", "compare", "fingerprints"]
+__all__ = ["K", "WINDOW", "MAX_COMMON", "Pair", "common_limit", "compare", "fingerprints"]

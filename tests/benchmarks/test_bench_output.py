@@ -150,3 +150,14 @@ def test_step_identity_finds_one_changed_bit(tmp_path):
     done = subprocess.run([sys.executable, "benchmarks/step_identity.py", "compare", str(record), "--only",
                            "solution/week2/start"], cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert done.returncode == 1 and f"DIFFERS solution/week2/start[0].steps.t[{k}]" in done.stdout
+
+
+def test_similarity_bench_prints_machine_baseline_and_ratio():
+    out = _script("benchmarks/similarity_bench.py", "--n", "8", "--hostile-mb", "0.2")
+    assert MACHINE.search(out) and LOAD_AFTER.search(out)
+    assert re.search(r"^baseline: stdlib tokenize over the class's blocks \(\d+ tokens\): [0-9.]+ s CPU$",
+                     out, re.M)
+    row = re.search(r"^class of 8 .* (\d+) pairs share a fingerprint, (\d+) at 60 % or more\), .* = "
+                    r"([0-9.]+|nan)x baseline", out, re.M)
+    assert row and int(row.group(1)) >= int(row.group(2)) > 0, out   # the copies of a variant pair up
+    assert re.search(r"^hostile student, a 0.2 MB block: [0-9.]+ s CPU", out, re.M), out
