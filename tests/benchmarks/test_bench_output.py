@@ -157,7 +157,7 @@ def test_similarity_bench_prints_machine_baseline_and_ratio():
     assert MACHINE.search(out) and LOAD_AFTER.search(out)
     assert re.search(r"^baseline: stdlib tokenize over the class's blocks \(\d+ tokens\): [0-9.]+ s CPU$",
                      out, re.M)
-    row = re.search(r"^class of 8 .* (\d+) pairs share a fingerprint, (\d+) at 60 % or more\), .* = "
+    row = re.search(r"^class of 8 .*\((\d+) pairs share a fingerprint, (\d+) at 60 % or more\), .* = "
                     r"([0-9.]+|nan)x baseline", out, re.M)
     assert row and int(row.group(1)) >= int(row.group(2)) > 0, out   # the copies of a variant pair up
     assert re.search(r"^hostile student, a 0.2 MB block: [0-9.]+ s CPU", out, re.M), out
