@@ -66,6 +66,8 @@ them all.</p>{% endif %}
 {%- if not loop.last %}; {% endif %}{% endfor %}.</p>{% endif %}
 {% if not_compared %}<h2>Not compared</h2><ul>
 {% for s in not_compared %}<li>{{ s.id }}: {{ s.why }}</li>{% endfor %}</ul>{% endif %}
+{% if notes %}<h2>Compared in part</h2><ul>
+{% for s in notes %}<li>{{ s.id }}: {{ s.notes|join("; ") }}</li>{% endfor %}</ul>{% endif %}
 {% for p in flagged[:shown] %}
 <section class="pair" id="pair-{{ p.rank }}">
 <h2>{{ p.rank }}. {{ p.a }} and {{ p.b }}: {{ "%d"|format(p.score * 100) }} %</h2>
@@ -145,7 +147,9 @@ def similarity_html(pairs: Sequence[Pair], codes: Sequence[StudentCode], not_com
         csp=STATIC_PAGE_CSP, week=meta["week"], threshold=meta["threshold"], k=meta["k"],
         window=meta["window"], common=meta["common"], handout=meta["handout"], compared=n,
         pair_count=n * (n - 1) // 2, flagged=flagged, shown=MAX_SIDE_BY_SIDE, best_below=below,
-        not_compared=[{"id": shown_id(sid), "why": why} for sid, why in sorted(not_compared.items())])
+        not_compared=[{"id": shown_id(sid), "why": why} for sid, why in sorted(not_compared.items())],
+        notes=[{"id": shown_id(c.id), "notes": c.notes[:5]} for c in sorted(codes, key=lambda c: c.id)
+               if c.notes][:MAX_LISTED])
 
 
 def print_top(pairs: Sequence[Pair], threshold: float, stream: TextIO, top: int = 10) -> None:

@@ -121,6 +121,7 @@ def test_hostile_ids_zips_and_blocks(tmp_path: Path) -> None:
     page = (tmp_path / "out" / "similarity.html").read_text()
     assert "<img" not in page and "&lt;img src=x onerror=alert(1)&gt;" + "x" * 35 + "…" in page
     assert "bidi\\u202e" in page
+    assert "<li>unbalanced: go_to_goal.py: START CODE BLOCK has no END CODE BLOCK after it" in page
     assert len(page) < 1_000_000, len(page)
 
 
