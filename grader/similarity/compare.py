@@ -3,7 +3,8 @@
 A pair's score is the share of the smaller side's fingerprints that the other side has too (1.0: all of
 the shorter submission's code is in the longer one). Fingerprints of the handout's own blocks are
 nobody's, and so are those found in more than ``max_common`` submissions (MOSS's ``-m``: the formula
-every correct solution writes, ``vel_r = (2*v + w*L) / (2*R)``, is no sign of copying in a class of 400).
+every correct solution writes, the wheel speeds of ``uni_to_diff``, is no sign of copying in a class of
+400).
 By default that is 10 (MOSS's) or a tenth of the class, whichever is more: a solution passed around 30
 of 400 students still shows.
 """
