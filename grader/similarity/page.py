@@ -157,7 +157,8 @@ def print_top(pairs: Sequence[Pair], threshold: float, stream: TextIO, top: int 
     above = [p for p in pairs if p.score >= threshold]
     print(f"{len(above)} pairs score {threshold:.0%} or more", file=stream)
     for rank, p in enumerate(above[:top], start=1):
-        blocks = ", ".join(m["a"] for m in p.blocks[:3]) + (", ..." if len(p.blocks) > 3 else "")
+        labels = list(dict.fromkeys(m["a"] for m in p.blocks))     # most shared first, each once
+        blocks = ", ".join(labels[:3]) + (", ..." if len(labels) > 3 else "")
         print(f"  {rank:>3}. {p.score:>4.0%}  {shown_id(p.a.id)}  {shown_id(p.b.id)}  ({blocks})",
               file=stream)
     if len(above) > top:

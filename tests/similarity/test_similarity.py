@@ -143,3 +143,11 @@ def test_cli(week3_class: Path, tmp_path: Path, capsys: pytest.CaptureFixture[st
     assert grade_main(["similarity", "week3", str(tmp_path / "nowhere")]) == 2
     assert "is not a folder of submissions" in capsys.readouterr().err
     assert grade_main(["similarity", "week3", str(week3_class), "--threshold", "7"]) == 2
+
+
+def test_out_inside_the_class_folder_is_no_student(week3_class: Path, tmp_path: Path) -> None:
+    folder = tmp_path / "class"
+    shutil.copytree(week3_class, folder)
+    for _ in range(2):   # the second run finds the first run's folder in the class folder
+        report = run(3, folder, folder / "similarity")
+    assert report["compared"] == 9 and report["not_compared"] == {}, report
