@@ -16,6 +16,7 @@ import sys
 from pathlib import Path
 from typing import TextIO
 
+from grader.batch.names import shown
 from grader.batch.store import write_atomic, write_json
 from grader.batch.submissions import discover, read_submission
 from grader.similarity.compare import MAX_COMMON, common_limit, compare
@@ -64,8 +65,12 @@ def read_class(source: Path, week: int, out: Path | None = None) -> tuple[list[S
         submission = read_submission(student, week=week)
         if submission.refused:
             refused[student.id] = submission.refused
-        else:
+            continue
+        try:
             codes.append(student_code(student.id, submission.files, week))
+        except Exception as exc:  # noqa: BLE001 - one submission's text never stops the comparison
+            refused[student.id] = shown(f"its code blocks could not be read ({type(exc).__name__}: "
+                                        f"{str(exc)[:300]})")
     if not codes and not refused:
         raise SimilarityError(f"{source} has no student folders or .zip files")
     return codes, refused

@@ -59,7 +59,9 @@ def _number(text: str) -> str:
         value = float(text.replace("_", ""))
     except ValueError:
         return text.lower()  # 0x1f, 1j: as written
-    return repr(value) if value != int(value) or abs(value) > 1e15 else str(int(value))
+    if not abs(value) <= 1e15:   # huge, or beyond a float (inf): as written (its first 32 characters)
+        return text.lower()[:32]
+    return str(int(value)) if value == int(value) else repr(value)
 
 
 def block_tokens(text: str) -> list[Token]:

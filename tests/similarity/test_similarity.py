@@ -129,6 +129,9 @@ def test_tokens_normalise_names_and_survive_broken_text() -> None:
     words = [t.text for t in block_tokens("vel_r = 2.0 * v  # c\ns = '''open\n")]
     assert words[:6] == ["V", "=", "2", "*", "V", ";"], words
     assert words[6:] == ["V", "=", "S"] or words[6:8] == ["V", "="], words
+    # numbers beyond a float once stopped the comparison (OverflowError): now a token as written
+    assert [t.text for t in block_tokens("x = " + "9" * 400 + " + 1e999\n")] == ["V", "=", "9" * 32, "+",
+                                                                                "1e999", ";"]
 
 
 def test_block_reader_takes_only_blocks() -> None:
