@@ -34,26 +34,28 @@ def _wide_class(week3_class: Path) -> Path:
     return week3_class
 
 
-def _outside(uri: str) -> tuple[list[str], int]:
+def _outside(uris: list[str]) -> list[tuple[list[str], int]]:
+    """For each page: the elements (tag, left..right, text) outside a 1024 px window, and its width."""
+    seen = []
     for context in chromium_context({"width": 1024, "height": 800}):
         page = context.new_page()
-        page.goto(uri)
-        found = page.evaluate(OUTSIDE)
-        width = page.evaluate("document.documentElement.scrollWidth")
-    return found, width
+        for uri in uris:
+            page.goto(uri)
+            seen.append((page.evaluate(OUTSIDE), page.evaluate("document.documentElement.scrollWidth")))
+    return seen
 
 
 def test_page_fits_1024(week3_class: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     folder = _wide_class(week3_class)
     report = run(3, folder, tmp_path / "out")
     assert ("a" * 120, "b" * 120) in [(p["a"], p["b"]) for p in report["pairs"]], report["pairs"]
-    found, width = _outside((tmp_path / "out" / "similarity.html").as_uri())
-    assert (found, width) == ([], 1024)
-
     spec = importlib.util.spec_from_file_location("wrong_page", DATA.parent / "wrong_page.py")
     wrong = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(wrong)
     monkeypatch.setattr(similarity_page, "_TEMPLATE", wrong.wrong_template(similarity_page._TEMPLATE))
     run(3, folder, tmp_path / "wrong")
-    found, width = _outside((tmp_path / "wrong" / "similarity.html").as_uri())
-    assert found and width > 1024, "the wrong page must run off the window, or this test proves nothing"
+
+    (found, width), (wrong_found, wrong_width) = _outside(
+        [(tmp_path / name / "similarity.html").as_uri() for name in ("out", "wrong")])
+    assert (found, width) == ([], 1024)
+    assert wrong_found and wrong_width > 1024, "the wrong page must run off the window (else: proves nothing)"
