@@ -63,11 +63,13 @@ def _parser() -> argparse.ArgumentParser:
         choices=("auto", "bwrap", "subprocess"),
         help="how student code is isolated (default: bubblewrap when it works)",
     )
-    batch = p.add_argument_group("batch grading (one sub-folder or .zip per student, or a platform's download)")
+    batch = p.add_argument_group("batch grading (one sub-folder or .zip per student, or a platform's "
+                                 "download)")
     batch.add_argument("--batch", default=None, metavar="SOURCE",
-                       help="grade every submission in SOURCE: a folder with one sub-folder or .zip per student "
-                            "id, or Canvas's submissions zip, Moodle's download or Gradescope's export (the "
-                            ".zip as downloaded or its extracted folder), recognised by its layout")
+                       help="grade every submission in SOURCE: a folder with one sub-folder or .zip per "
+                            "student id, or Canvas's submissions zip, Moodle's download or Gradescope's "
+                            "export (the .zip as downloaded or its extracted folder), recognised by its"
+                            " layout")
     batch.add_argument(
         "--jobs", type=int, default=None, help="submissions graded at once (default: the number of cores)"
     )
@@ -81,20 +83,22 @@ def _parser() -> argparse.ArgumentParser:
     late = p.add_argument_group("roster and late work (with --batch; see docs/batch.md)")
     late.add_argument("--roster", default=None, metavar="CSV",
                       help="the class list: id, name, login/email, section, extension columns (a Canvas "
-                           "gradebook export, Moodle's grading worksheet, Gradescope's roster work as they come); "
-                           "names who did not submit")
+                           "gradebook export, Moodle's grading worksheet, Gradescope's roster work as they "
+                           "come); names who did not submit")
     late.add_argument("--deadline", default=None, metavar="ISO",
-                      help="the due date, ISO 8601 with its offset (2026-03-01T23:59-05:00), or with --timezone")
+                      help="the due date, ISO 8601 with its offset (2026-03-01T23:59-05:00), or with "
+                           "--timezone")
     late.add_argument("--late-penalty", default=None, metavar="RATE",
-                      help="percent of the points possible per day or hour late, rounded up: 10%%/day, 2%%/hour")
+                      help="percent of the points possible per day or hour late, rounded up: 10%%/day, "
+                           "2%%/hour")
     late.add_argument("--late-cap", default=None, metavar="PCT", help="the penalty is at most this: 50%%")
     late.add_argument("--late-floor", default=None, metavar="PCT",
                       help="as Canvas's lowest possible grade: lateness never takes a score below this share")
     late.add_argument("--grace", default=None, metavar="DURATION",
                       help="this long past the deadline is not late: 15m, 1h (a bare number is minutes)")
     late.add_argument("--times", default=None, metavar="CSV",
-                      help="submission times where the download has none (Canvas, Moodle): id and submitted_at "
-                           "columns, or Moodle's grading worksheet")
+                      help="submission times where the download has none (Canvas, Moodle): id and "
+                           "submitted_at columns, or Moodle's grading worksheet")
     late.add_argument("--timezone", default=None, metavar="ZONE",
                       help="time zone of dates given without one (Moodle's worksheet): Europe/London")
     return p

@@ -18,8 +18,11 @@ from grader.batch.found import Found, rel_clashes
 from grader.batch.identity import Identity
 from grader.batch.submissions import STUDENT_FILES
 
-ENTRY = re.compile(r"^(?:(?P<name>[^/]*?)_)??(?:(?P<late>late)_)?(?P<uid>anon_[0-9a-z]+|\d+)_"
-                   r"(?:(?P<att>\d+)_(?P<file>[^/]+)|(?P<kind>text|link)\.html)$", re.IGNORECASE)
+ENTRY = re.compile(
+    r"^(?:(?P<name>[^/]*?)_)??(?:(?P<late>late)_)?(?P<uid>anon_[0-9a-z]+|\d+)_"
+    r"(?:(?P<att>\d+)_(?P<file>[^/]+)|(?P<kind>text|link)\.html)$",
+    re.IGNORECASE,
+)
 REUPLOAD = re.compile(r"^(?P<base>[^.]*?)-\d+(?P<ext>\..*)?$")
 
 
@@ -42,8 +45,9 @@ def read_canvas(export: Export) -> tuple[dict[str, Found], list[str]]:
         uid = match["uid"].lower() if match["uid"].lower().startswith("anon_") else match["uid"]
         found = students.get(uid)
         if found is None:
-            found = students[uid] = Found(Identity(id=uid, name=match["name"] or "", platform="canvas",
-                                                   platform_id=uid))
+            found = students[uid] = Found(
+                Identity(id=uid, name=match["name"] or "", platform="canvas", platform_id=uid)
+            )
         if match["late"] and not found.identity.late_flag:
             found.identity = _late(found.identity)
         found.add_file_name(entry.name)

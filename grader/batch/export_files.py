@@ -19,7 +19,7 @@ from pathlib import Path
 from grader.batch.names import MAX_DEPTH, SubmissionRefused, shown
 from grader.batch.zips import Limits, entry_kind, is_junk, read_entry, safe_member_path
 
-EXTRA_DEPTH = 3        # folders of the export itself above a student's files (Moodle: one)
+EXTRA_DEPTH = 3  # folders of the export itself above a student's files (Moodle: one)
 
 
 @dataclass(frozen=True)
@@ -27,8 +27,8 @@ class ExportLimits:
     """Caps for a whole export (each student's files also have :class:`Limits`)."""
 
     max_entries: int = 200_000
-    max_total_bytes: int = 8 * 1024 ** 3       # declared in the zip, or on disk, for the whole export
-    max_metadata_bytes: int = 32 * 1024 ** 2   # submission_metadata.yml, a roster, a times file
+    max_total_bytes: int = 8 * 1024**3  # declared in the zip, or on disk, for the whole export
+    max_metadata_bytes: int = 32 * 1024**2  # submission_metadata.yml, a roster, a times file
 
 
 @dataclass(frozen=True)
@@ -37,7 +37,7 @@ class Entry:
 
     name: str
     size: int
-    link: bool = False        # a link or special file: listed so it is reported, never read
+    link: bool = False  # a link or special file: listed so it is reported, never read
 
 
 @dataclass
@@ -47,8 +47,8 @@ class Export:
     path: Path
     is_zip: bool
     entries: list[Entry] = field(default_factory=list)
-    problems: list[str] = field(default_factory=list)   # names that could not be placed at all
-    prefix: str = ""      # a zip whose entries all sit in one folder: that folder, stepped into
+    problems: list[str] = field(default_factory=list)  # names that could not be placed at all
+    prefix: str = ""  # a zip whose entries all sit in one folder: that folder, stepped into
 
     def top_names(self) -> list[str]:
         """The first path components, sorted, each once."""
@@ -103,8 +103,10 @@ def _list_folder(export: Export, limits: ExportLimits) -> None:
                 if (here / name).is_symlink():
                     export.entries.append(Entry("/".join((*parts, name)), 0, link=True))
         if len(parts) >= MAX_DEPTH + EXTRA_DEPTH and dirnames:
-            export.problems.append(f"{shown('/'.join(parts))[:200]}/... is nested more than "
-                                   f"{MAX_DEPTH + EXTRA_DEPTH} folders deep; not read")
+            export.problems.append(
+                f"{shown('/'.join(parts))[:200]}/... is nested more than "
+                f"{MAX_DEPTH + EXTRA_DEPTH} folders deep; not read"
+            )
             dirnames.clear()
         for name in sorted(filenames):
             rel = (*parts, name)
@@ -138,11 +140,16 @@ def read_members(export: Export, members: list[tuple[str, str]], limits: Limits)
         for name, rel in members:
             entry = sizes.get(name)
             if entry is None or entry.link:
-                raise SubmissionRefused(f"{shown(name)} is a link or a special file; only plain files are "
-                                        f"read (links are never followed)")
+                raise SubmissionRefused(
+                    f"{shown(name)} is a link or a special file; only plain files are "
+                    f"read (links are never followed)"
+                )
             room = limits.max_total_bytes - total
-            data = read_entry(archive, archive.getinfo(export.prefix + name), rel, limits, room) if archive is not None \
+            data = (
+                read_entry(archive, archive.getinfo(export.prefix + name), rel, limits, room)
+                if archive is not None
                 else _read_file(export.path, name, rel, min(limits.max_file_bytes, room))
+            )
             total += len(data)
             files[rel] = data
     except (zipfile.BadZipFile, KeyError) as exc:

@@ -60,7 +60,7 @@ def gradebook_csv(results: dict[str, dict], missing: list[str] | tuple[str, ...]
         max_score = result.get("max_score")
         if not isinstance(max_score, (int, float)):
             max_score = fallback_max
-        late = result.get("late") if isinstance(result.get("late"), dict) else {}
+        late = lt if isinstance(lt := result.get("late"), dict) else {}
         row = [sid, *[_number(points.get(cid)) for cid in ids], _number(result.get("score", 0.0)),
                _number(max_score), result.get("status", ""), _one_line(result.get("message", "")),
                _number(late.get("penalty_points")), _number(late.get("score_before"))]
@@ -114,7 +114,8 @@ def gradescope_result(result: dict) -> dict:
     return export
 
 
-def write_exports(out: Path, results: dict[str, dict], stems: dict[str, str], meta: dict | None = None) -> None:
+def write_exports(out: Path, results: dict[str, dict], stems: dict[str, str],
+                  meta: dict | None = None) -> None:
     """Write ``gradebook.csv`` and ``gradescope/<id>/results.json`` for every student in ``results``.
 
     The Gradescope files are written by a few threads: each write waits for its fsync, and at the end of

@@ -20,9 +20,9 @@ class Found:
     """One student of an export."""
 
     identity: Identity
-    members: list[tuple[str, str]] = field(default_factory=list)   # (name in the export, path graded)
-    notices: list[str] = field(default_factory=list)                # for the student's page
-    held: str = ""                                                  # for the instructor; "" = gradable
+    members: list[tuple[str, str]] = field(default_factory=list)  # (name in the export, path graded)
+    notices: list[str] = field(default_factory=list)  # for the student's page
+    held: str = ""  # for the instructor; "" = gradable
 
     def add_file_name(self, name: str) -> None:
         """Remember an export entry's name in the identity (the grade-back feedback files use it)."""
@@ -41,6 +41,8 @@ def rel_clashes(found: Found) -> None:
     for name, rel in found.members:
         key = rel.casefold()
         if key in seen:
-            found.hold(f"two entries of the export give the file {rel}: {seen[key]} and {name}; which one "
-                       f"is the submission cannot be told from the download")
+            found.hold(
+                f"two entries of the export give the file {rel}: {seen[key]} and {name}; which one "
+                f"is the submission cannot be told from the download"
+            )
         seen.setdefault(key, name)

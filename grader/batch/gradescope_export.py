@@ -84,7 +84,7 @@ def read_gradescope(export: Export) -> tuple[dict[str, Found], list[str], list[s
     for entry in export.entries:
         if entry.name == meta_name:
             continue
-        inside = entry.name[len(base):] if entry.name.startswith(base) else ""
+        inside = entry.name[len(base) :] if entry.name.startswith(base) else ""
         folder, _, rel = inside.partition("/")
         if FOLDER.match(folder) and rel:
             folders.setdefault(folder, []).append((entry.name, rel))
@@ -100,9 +100,15 @@ def read_gradescope(export: Export) -> tuple[dict[str, Found], list[str], list[s
         for person in (submitters if isinstance(submitters, list) else [])[:MAX_SUBMITTERS]:
             person = person if isinstance(person, dict) else {}
             sid, email = _text(_field(person, "sid")), _text(_field(person, "email"))
-            ident = Identity(id=sid or email or key, name=_text(_field(person, "name")), login=email,
-                             sis_id=sid, platform="gradescope", platform_id=key.split("_", 1)[1],
-                             submitted_at=created)
+            ident = Identity(
+                id=sid or email or key,
+                name=_text(_field(person, "name")),
+                login=email,
+                sis_id=sid,
+                platform="gradescope",
+                platform_id=key.split("_", 1)[1],
+                submitted_at=created,
+            )
             found = Found(ident, members=list(folders.get(key, [])))
             for name, _rel in found.members:
                 found.add_file_name(name)
@@ -125,8 +131,13 @@ def _latest(earlier: Found, later: Found, t_earlier: str, t_later: str, notes: l
     if not t_earlier or not t_later or t_earlier == t_later:
         earlier.hold(f"two submissions ({ids}) and no distinct submission times to tell which is the latest")
         return earlier
-    newest, older = (later, earlier) if datetime.fromisoformat(t_later) > datetime.fromisoformat(t_earlier) \
+    newest, older = (
+        (later, earlier)
+        if datetime.fromisoformat(t_later) > datetime.fromisoformat(t_earlier)
         else (earlier, later)
-    notes.append(f"{sid}: resubmitted; graded submission {newest.identity.platform_id} "
-                 f"({newest.identity.submitted_at}), not {older.identity.platform_id}")
+    )
+    notes.append(
+        f"{sid}: resubmitted; graded submission {newest.identity.platform_id} "
+        f"({newest.identity.submitted_at}), not {older.identity.platform_id}"
+    )
     return dataclasses.replace(newest, held=newest.held or "")

@@ -15,7 +15,6 @@ place or tell apart is named for the instructor (``unplaced``, ``held``), never 
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 from dataclasses import dataclass, field
 from datetime import datetime, tzinfo
@@ -26,17 +25,27 @@ from grader.batch import canvas_download, gradescope_export, moodle_download
 from grader.batch.export_files import Export, ExportRefused, list_export
 from grader.batch.found import Found
 from grader.batch.identity import Identity
-from grader.batch.late import LatePolicy, PolicyError, parse_duration, parse_extension, parse_penalty, \
-    parse_percent, parse_time
+from grader.batch.late import (
+    LatePolicy,
+    PolicyError,
+    parse_duration,
+    parse_extension,
+    parse_penalty,
+    parse_percent,
+    parse_time,
+)
 from grader.batch.names import shown
 from grader.batch.roster import RosterError, match, read_roster
 from grader.batch.submissions import Student, discover
 from grader.batch.times import read_times, time_for
 
-LAYOUTS = {"folder": "class folder (one folder or .zip per student id)",
-           "canvas": "Canvas \"Download Submissions\"", "moodle": "Moodle \"Download all submissions\"",
-           "gradescope": "Gradescope \"Export Submissions\""}
-MAX_LISTED = 200        # names listed in batch.json per kind of note
+LAYOUTS = {
+    "folder": "class folder (one folder or .zip per student id)",
+    "canvas": 'Canvas "Download Submissions"',
+    "moodle": 'Moodle "Download all submissions"',
+    "gradescope": 'Gradescope "Export Submissions"',
+}
+MAX_LISTED = 200  # names listed in batch.json per kind of note
 
 
 class IntakeError(ValueError):
@@ -59,9 +68,16 @@ class IntakeOptions:
     @classmethod
     def from_args(cls, given: dict) -> IntakeOptions:
         """From the ``grade`` parser's values (missing ones stay None)."""
-        paths = {k: Path(given[k]) if given.get(k) else None for k in ("roster", "times")}
-        return cls(**paths, **{k: given.get(k) for k in ("timezone", "deadline", "late_penalty", "late_cap",
-                                                         "late_floor", "grace")})
+        def path(key: str) -> Path | None:
+            return Path(given[key]) if given.get(key) else None
+
+        def text(key: str) -> str | None:
+            value = given.get(key)
+            return str(value) if value else None
+
+        return cls(roster=path("roster"), times=path("times"), timezone=text("timezone"),
+                   deadline=text("deadline"), late_penalty=text("late_penalty"), late_cap=text("late_cap"),
+                   late_floor=text("late_floor"), grace=text("grace"))
 
     def zone(self) -> tzinfo | None:
         """``--timezone`` (an IANA name such as Europe/London), None when not given (IntakeError)."""
@@ -70,23 +86,26 @@ class IntakeOptions:
         try:
             return ZoneInfo(self.timezone)
         except (ZoneInfoNotFoundError, ValueError):
-            raise IntakeError(f"--timezone {self.timezone!r} is not a time zone name (Europe/London, "
-                              f"America/New_York, UTC)") from None
+            raise IntakeError(
+                f"--timezone {self.timezone!r} is not a time zone name (Europe/London, America/New_York, UTC)"
+            ) from None
 
     def policy(self) -> LatePolicy | None:
-        """The late policy, None without ``--deadline`` (IntakeError for a policy option alone or unreadable)."""
+        """The late policy; None without ``--deadline`` (IntakeError: a policy option alone, unreadable)."""
         if not self.deadline:
             if any((self.late_penalty, self.late_cap, self.late_floor, self.grace)):
                 raise IntakeError("--late-penalty, --late-cap, --late-floor and --grace need --deadline")
             return None
         try:
             percent, interval = parse_penalty(self.late_penalty) if self.late_penalty else (0.0, 86400)
-            return LatePolicy(deadline=parse_time(self.deadline, self.zone()), percent=percent,
-                              interval_s=interval,
-                              cap_percent=parse_percent(self.late_cap, "--late-cap") if self.late_cap else None,
-                              floor_percent=parse_percent(self.late_floor, "--late-floor")
-                              if self.late_floor else None,
-                              grace_s=parse_duration(self.grace) if self.grace else 0)
+            return LatePolicy(
+                deadline=parse_time(self.deadline, self.zone()),
+                percent=percent,
+                interval_s=interval,
+                cap_percent=parse_percent(self.late_cap, "--late-cap") if self.late_cap else None,
+                floor_percent=parse_percent(self.late_floor, "--late-floor") if self.late_floor else None,
+                grace_s=parse_duration(self.grace) if self.grace else 0,
+            )
         except PolicyError as exc:
             raise IntakeError(str(exc)) from None
 
@@ -105,7 +124,7 @@ class ClassList:
     not_on_roster: list[str] = field(default_factory=list)
     extensions: dict[str, datetime] = field(default_factory=dict)
     policy: LatePolicy | None = None
-    no_time_late: list[str] = field(default_factory=list)   # Canvas said LATE, no time to charge by
+    no_time_late: list[str] = field(default_factory=list)  # Canvas said LATE, no time to charge by
 
     def described(self) -> str:
         """The first line a batch prints: what SOURCE was recognised as."""
@@ -113,14 +132,22 @@ class ClassList:
 
     def meta(self) -> dict:
         """For batch.json and the summary (the shared convention's ``roster`` and ``missing``)."""
-        return {"layout": self.layout, "layout_text": LAYOUTS[self.layout],
-                "roster": [r.to_json() for r in self.roster], "missing": list(self.missing),
-                "intake": {"unplaced": self.unplaced[:MAX_LISTED], "unplaced_count": len(self.unplaced),
-                           "not_on_roster": self.not_on_roster[:MAX_LISTED],
-                           "not_on_roster_count": len(self.not_on_roster),
-                           "notes": self.notes[:MAX_LISTED], "late_without_time": self.no_time_late[:MAX_LISTED],
-                           "late_policy": self.policy.to_json() if self.policy else None,
-                           "late_policy_text": self.policy.describe() if self.policy else ""}}
+        return {
+            "layout": self.layout,
+            "layout_text": LAYOUTS[self.layout],
+            "roster": [r.to_json() for r in self.roster],
+            "missing": list(self.missing),
+            "intake": {
+                "unplaced": self.unplaced[:MAX_LISTED],
+                "unplaced_count": len(self.unplaced),
+                "not_on_roster": self.not_on_roster[:MAX_LISTED],
+                "not_on_roster_count": len(self.not_on_roster),
+                "notes": self.notes[:MAX_LISTED],
+                "late_without_time": self.no_time_late[:MAX_LISTED],
+                "late_policy": self.policy.to_json() if self.policy else None,
+                "late_policy_text": self.policy.describe() if self.policy else "",
+            },
+        }
 
     def messages(self) -> list[str]:
         """What the batch prints for the instructor before grading starts."""
@@ -133,7 +160,9 @@ class ClassList:
         if self.not_on_roster:
             lines.append(f"not on the roster (graded, check them): {', '.join(self.not_on_roster[:50])}")
         if self.missing:
-            lines.append(f"on the roster, no submission: {len(self.missing)} ({', '.join(self.missing[:50])})")
+            lines.append(
+                f"on the roster, no submission: {len(self.missing)} ({', '.join(self.missing[:50])})"
+            )
         for sid in self.no_time_late[:50]:
             lines.append(f"{sid}: marked late by Canvas, no submission time: give --times")
         return lines
@@ -144,8 +173,9 @@ def read_class(source: Path, options: IntakeOptions, out: Path | None = None) ->
     policy = options.policy()
     zone = options.zone()
     if not source.exists():
-        raise IntakeError(f"{source} is not a folder of submissions nor a platform's download (it does not "
-                          f"exist)")
+        raise IntakeError(
+            f"{source} is not a folder of submissions nor a platform's download (it does not exist)"
+        )
     klass = _recognise(source, out)
     if options.times:
         try:
@@ -172,11 +202,14 @@ def read_class(source: Path, options: IntakeOptions, out: Path | None = None) ->
                 if until is not None:
                     klass.extensions[sid] = until
     klass.policy = policy
-    klass.no_time_late = [s.id for s in klass.students
-                          if (i := _identity(s)).late_flag and not i.submitted_at]
+    klass.no_time_late = [
+        s.id for s in klass.students if (i := _identity(s)).late_flag and not i.submitted_at
+    ]
     if klass.no_time_late and not policy:
-        klass.notes.append(f"{len(klass.no_time_late)} submissions are marked late by Canvas; no --deadline "
-                           f"was given, so no late penalty applies")
+        klass.notes.append(
+            f"{len(klass.no_time_late)} submissions are marked late by Canvas; no --deadline "
+            f"was given, so no late penalty applies"
+        )
         klass.no_time_late = []
     return klass
 
@@ -188,8 +221,11 @@ def _identity(student: Student) -> Identity:
 def _with_time(student: Student, times: dict[str, str]) -> Student:
     ident = _identity(student)
     when = time_for(times, ident.id, ident.login, ident.sis_id)
-    return dataclasses.replace(student, identity=dataclasses.replace(ident, submitted_at=when)) if when \
+    return (
+        dataclasses.replace(student, identity=dataclasses.replace(ident, submitted_at=when))
+        if when
         else student
+    )
 
 
 def _recognise(source: Path, out: Path | None) -> ClassList:
@@ -197,8 +233,7 @@ def _recognise(source: Path, out: Path | None) -> ClassList:
     if source.is_dir():
         inner = _wrapped(source, out)
         top = sorted(e.name for e in inner.iterdir() if not e.name.startswith((".", "__MACOSX")))
-        if "submission_metadata.yml" in top or moodle_download.looks_like(top) or \
-                _canvas_names(inner, top):
+        if "submission_metadata.yml" in top or moodle_download.looks_like(top) or _canvas_names(inner, top):
             if out is not None and _holds(inner, out):
                 raise IntakeError("--out must not be inside the platform's download; choose another folder")
             try:
@@ -206,8 +241,9 @@ def _recognise(source: Path, out: Path | None) -> ClassList:
             except ExportRefused as exc:
                 raise IntakeError(str(exc)) from None
         students = [s for s in discover(source) if out is None or not _holds(s.path, out)]
-        return ClassList("folder", source, [dataclasses.replace(s, identity=Identity(id=s.id))
-                                            for s in students])
+        return ClassList(
+            "folder", source, [dataclasses.replace(s, identity=Identity(id=s.id)) for s in students]
+        )
     if source.suffix.lower() != ".zip":
         raise IntakeError(f"{source} is neither a folder of submissions nor a platform's .zip download")
     try:
@@ -226,8 +262,11 @@ def _canvas_names(folder: Path, top: list[str]) -> bool:
 def _wrapped(folder: Path, out: Path | None) -> Path:
     """The folder a download was extracted to, stepping into one wrapping folder (``CS101 submissions/``)
     when the download is inside it; ``folder`` itself otherwise."""
-    entries = [e for e in folder.iterdir() if not e.name.startswith((".", "__MACOSX"))
-               and (out is None or not _holds(e, out))]
+    entries = [
+        e
+        for e in folder.iterdir()
+        if not e.name.startswith((".", "__MACOSX")) and (out is None or not _holds(e, out))
+    ]
     if len(entries) == 1 and entries[0].is_dir() and not entries[0].is_symlink():
         inner = entries[0]
         top = sorted(e.name for e in inner.iterdir() if not e.name.startswith((".", "__MACOSX")))
@@ -249,14 +288,22 @@ def _from_export(source: Path, export: Export) -> ClassList:
             found, unplaced, notes = gradescope_export.read_gradescope(export)
         else:
             top = _step_in(export, export.top_names()) if export.is_zip else export.top_names()
-            layout = "moodle" if moodle_download.looks_like(export.top_names()) else \
-                "canvas" if canvas_download.looks_like(export.top_names(), export) else ""
+            layout = (
+                "moodle"
+                if moodle_download.looks_like(export.top_names())
+                else "canvas"
+                if canvas_download.looks_like(export.top_names(), export)
+                else ""
+            )
             if not layout:
-                raise IntakeError(f"{source.name} is not a Canvas, Moodle or Gradescope download (its first "
-                                  f"entries: {', '.join(shown(n) for n in top[:5])}); a class folder must be "
-                                  f"a folder with one sub-folder or .zip per student")
-            found, unplaced = (moodle_download.read_moodle if layout == "moodle"
-                               else canvas_download.read_canvas)(export)
+                raise IntakeError(
+                    f"{source.name} is not a Canvas, Moodle or Gradescope download (its first "
+                    f"entries: {', '.join(shown(n) for n in top[:5])}); a class folder must be "
+                    f"a folder with one sub-folder or .zip per student"
+                )
+            found, unplaced = (
+                moodle_download.read_moodle if layout == "moodle" else canvas_download.read_canvas
+            )(export)
     except ExportRefused as exc:
         raise IntakeError(str(exc)) from None
     students = [_student(sid, f, source, export) for sid, f in sorted(found.items())]
@@ -267,9 +314,9 @@ def _step_in(export: Export, top: list[str]) -> list[str]:
     """A zip whose entries all sit in one folder (a download zipped again): its entries re-rooted there."""
     if len(top) == 1 and all("/" in e.name for e in export.entries):
         prefix = top[0] + "/"
-        inner = sorted({e.name[len(prefix):].split("/", 1)[0] for e in export.entries})
+        inner = sorted({e.name[len(prefix) :].split("/", 1)[0] for e in export.entries})
         if moodle_download.looks_like(inner) or any(canvas_download.ENTRY.match(n) for n in inner):
-            export.entries = [dataclasses.replace(e, name=e.name[len(prefix):]) for e in export.entries]
+            export.entries = [dataclasses.replace(e, name=e.name[len(prefix) :]) for e in export.entries]
             export.prefix = prefix
             return export.top_names()
     return top
@@ -278,7 +325,22 @@ def _step_in(export: Export, top: list[str]) -> list[str]:
 def _student(sid: str, found: Found, source: Path, export: Export) -> Student:
     members = tuple(found.members)
     if found.held:
-        return Student(sid, source, "held", identity=found.identity, members=members, held=found.held,
-                       notices=tuple(found.notices), export=export)
-    return Student(sid, source, "export", identity=found.identity, members=members,
-                   notices=tuple(found.notices), export=export)
+        return Student(
+            sid,
+            source,
+            "held",
+            identity=found.identity,
+            members=members,
+            held=found.held,
+            notices=tuple(found.notices),
+            export=export,
+        )
+    return Student(
+        sid,
+        source,
+        "export",
+        identity=found.identity,
+        members=members,
+        notices=tuple(found.notices),
+        export=export,
+    )

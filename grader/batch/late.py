@@ -19,9 +19,21 @@ import re
 from dataclasses import dataclass
 from datetime import datetime, timedelta, tzinfo
 
-UNITS = {"s": 1, "sec": 1, "second": 1, "m": 60, "min": 60, "minute": 60, "h": 3600, "hour": 3600,
-         "d": 86400, "day": 86400, "w": 604800, "week": 604800}
-MAX_SECONDS = 10 * 365 * 86400    # ten years: anything longer is a typing error
+UNITS = {
+    "s": 1,
+    "sec": 1,
+    "second": 1,
+    "m": 60,
+    "min": 60,
+    "minute": 60,
+    "h": 3600,
+    "hour": 3600,
+    "d": 86400,
+    "day": 86400,
+    "w": 604800,
+    "week": 604800,
+}
+MAX_SECONDS = 10 * 365 * 86400  # ten years: anything longer is a typing error
 
 
 class PolicyError(ValueError):
@@ -32,8 +44,8 @@ class PolicyError(ValueError):
 class LatePolicy:
     """What ``--deadline``, ``--late-penalty``, ``--late-cap``, ``--late-floor`` and ``--grace`` say."""
 
-    deadline: datetime                 # aware
-    percent: float = 0.0               # of the points possible, per interval
+    deadline: datetime  # aware
+    percent: float = 0.0  # of the points possible, per interval
     interval_s: int = 86400
     cap_percent: float | None = None
     floor_percent: float | None = None
@@ -53,8 +65,14 @@ class LatePolicy:
 
     def to_json(self) -> dict:
         """For batch.json."""
-        return {"deadline": self.deadline.isoformat(), "percent": self.percent, "interval_s": self.interval_s,
-                "cap_percent": self.cap_percent, "floor_percent": self.floor_percent, "grace_s": self.grace_s}
+        return {
+            "deadline": self.deadline.isoformat(),
+            "percent": self.percent,
+            "interval_s": self.interval_s,
+            "cap_percent": self.cap_percent,
+            "floor_percent": self.floor_percent,
+            "grace_s": self.grace_s,
+        }
 
 
 def parse_time(text: str, zone: tzinfo | None, what: str = "--deadline") -> datetime:
@@ -63,12 +81,15 @@ def parse_time(text: str, zone: tzinfo | None, what: str = "--deadline") -> date
     try:
         when = datetime.fromisoformat(text.strip().replace("Z", "+00:00"))
     except ValueError:
-        raise PolicyError(f"{what} {text!r} is not an ISO 8601 date and time (2026-03-01T23:59:00-05:00)") \
-            from None
+        raise PolicyError(
+            f"{what} {text!r} is not an ISO 8601 date and time (2026-03-01T23:59:00-05:00)"
+        ) from None
     if when.tzinfo is None:
         if zone is None:
-            raise PolicyError(f"{what} {text!r} has no time zone: add one (2026-03-01T23:59-05:00, ...Z) or "
-                              f"give --timezone (America/New_York)")
+            raise PolicyError(
+                f"{what} {text!r} has no time zone: add one (2026-03-01T23:59-05:00, ...Z) or "
+                f"give --timezone (America/New_York)"
+            )
         when = when.replace(tzinfo=zone)
     return when
 
@@ -127,18 +148,35 @@ def parse_extension(text: str, deadline: datetime, zone: tzinfo | None) -> datet
     return parse_time(text, zone or deadline.tzinfo, "extension")
 
 
-def late_record(policy: LatePolicy, submitted_at: str, extension_until: datetime | None, score: float,
-                max_score: float | None, late_flag: bool = False, platform: str = "") -> dict:
+def late_record(
+    policy: LatePolicy,
+    submitted_at: str,
+    extension_until: datetime | None,
+    score: float,
+    max_score: float | None,
+    late_flag: bool = False,
+    platform: str = "",
+) -> dict:
     """``result["late"]`` for one graded student (see the module docstring for the rule)."""
     due = extension_until or policy.deadline
-    record = {"deadline": policy.deadline.isoformat(), "submitted_at": submitted_at, "seconds_late": 0,
-              "extension_until": extension_until.isoformat() if extension_until else None,
-              "penalty_percent": 0.0, "penalty_points": 0.0, "score_before": score, "note": ""}
+    record = {
+        "deadline": policy.deadline.isoformat(),
+        "submitted_at": submitted_at,
+        "seconds_late": 0,
+        "extension_until": extension_until.isoformat() if extension_until else None,
+        "penalty_percent": 0.0,
+        "penalty_points": 0.0,
+        "score_before": score,
+        "note": "",
+    }
     when = _aware(submitted_at)
     if when is None:
         record["submitted_at"] = ""
-        record["note"] = ("marked late by Canvas, no submission time: give --times" if late_flag else
-                          f"no submission time from {platform or 'the submission'}: no penalty (give --times)")
+        record["note"] = (
+            "marked late by Canvas, no submission time: give --times"
+            if late_flag
+            else f"no submission time from {platform or 'the submission'}: no penalty (give --times)"
+        )
         return record
     seconds = (when - due).total_seconds()
     record["seconds_late"] = max(0, math.ceil(seconds))
@@ -157,8 +195,11 @@ def late_record(policy: LatePolicy, submitted_at: str, extension_until: datetime
     percent = min(percent, 100.0)
     points = min(score, (max_score or 0.0) * percent / 100.0)
     unit = "day" if policy.interval_s == 86400 else "hour"
-    record.update(penalty_percent=round(percent, 6), penalty_points=round(points, 6),
-                  note=f"{intervals} {unit}{'s' if intervals != 1 else ''} late")
+    record.update(
+        penalty_percent=round(percent, 6),
+        penalty_points=round(points, 6),
+        note=f"{intervals} {unit}{'s' if intervals != 1 else ''} late",
+    )
     return record
 
 

@@ -23,23 +23,29 @@ _BODY = re.compile(r"<body\b[^>]*>", re.IGNORECASE)
 
 def _number(value: object) -> float | None:
     ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
-    return float(value) if ok else None   # type: ignore[arg-type]
+    return float(value) if ok else None  # type: ignore[arg-type]
 
 
 def raw_score(result: dict) -> float | None:
     """The score before any late penalty; None when a stored result's numbers do not hold together (then
     the student is graded again rather than charged from a forged or damaged file)."""
     late = result.get("late")
-    score = _number(late.get("score_before")) if isinstance(late, dict) else \
-        _number(result.get("score")) if late is None else None
+    score = (
+        _number(late.get("score_before"))
+        if isinstance(late, dict)
+        else _number(result.get("score"))
+        if late is None
+        else None
+    )
     top = _number(result.get("max_score"))
     if score is None or score < 0 or (top is not None and score > top + 1e-9):
         return None
     return score
 
 
-def settle_late(result: dict, identity: Identity, policy: LatePolicy | None,
-                extension: datetime | None) -> bool | None:
+def settle_late(
+    result: dict, identity: Identity, policy: LatePolicy | None, extension: datetime | None
+) -> bool | None:
     """Set ``result["late"]`` and ``result["score"]`` for ``policy`` (no record without one). True when
     the result changed, False when it already held this, None when its stored numbers cannot be trusted."""
     if result.get("status") != "graded":
@@ -47,8 +53,19 @@ def settle_late(result: dict, identity: Identity, policy: LatePolicy | None,
     raw = raw_score(result)
     if raw is None:
         return None
-    new = late_record(policy, identity.submitted_at, extension, raw, _number(result.get("max_score")),
-                      identity.late_flag, identity.platform) if policy else None
+    new = (
+        late_record(
+            policy,
+            identity.submitted_at,
+            extension,
+            raw,
+            _number(result.get("max_score")),
+            identity.late_flag,
+            identity.platform,
+        )
+        if policy
+        else None
+    )
     if new == result.get("late") and (new is not None or _number(result.get("score")) == raw):
         return False
     if new is None:
@@ -66,7 +83,7 @@ def with_late_section(page: str, late: dict | None) -> str:
     at = body.end() if body else 0
     rest = page[at:]
     if rest.startswith(START) and (end := rest.find(END)) >= 0:
-        rest = rest[end + len(END):]
+        rest = rest[end + len(END) :]
     return page[:at] + _section(late) + rest
 
 
@@ -76,10 +93,18 @@ def _section(late: dict | None) -> str:
     points = float(late.get("penalty_points") or 0.0)
     before = float(late.get("score_before") or 0.0)
     due = late.get("extension_until") or late.get("deadline")
-    text = (f"Submitted {late.get('submitted_at')}; due {due}"
-            f"{' (your extension)' if late.get('extension_until') else ''}: {late.get('note')}. ")
-    text += (f"Late penalty: {points:g} points ({float(late.get('penalty_percent') or 0):g}% of the points "
-             f"possible); score {before:g} before the penalty, {before - points:g} after it." if points else
-             "No penalty.")
-    return (f'{START}<section id="late-policy" style="border:2px solid #c80;padding:2px 12px;margin:8px 0">'
-            f"<h2>Late submission</h2><p>{html.escape(text)}</p></section>{END}")
+    text = (
+        f"Submitted {late.get('submitted_at')}; due {due}"
+        f"{' (your extension)' if late.get('extension_until') else ''}: {late.get('note')}. "
+    )
+    text += (
+        f"Late penalty: {points:g} point{'' if points == 1 else 's'} "
+        f"({float(late.get('penalty_percent') or 0):g}% of the points "
+        f"possible); score {before:g} before the penalty, {before - points:g} after it."
+        if points
+        else "No penalty."
+    )
+    return (
+        f'{START}<section id="late-policy" style="border:2px solid #c80;padding:2px 12px;margin:8px 0">'
+        f"<h2>Late submission</h2><p>{html.escape(text)}</p></section>{END}"
+    )

@@ -15,8 +15,10 @@ from grader.batch.export_files import Export
 from grader.batch.found import Found, rel_clashes
 from grader.batch.identity import Identity
 
-TOP = re.compile(r"^(?P<prefix>[^/]*?)_(?P<pid>\d+)_(?P<type>assignsubmission|assignfeedback)_"
-                 r"(?P<plugin>[a-z0-9]+)(?P<rest>(?:_[^/]*)?)$")
+TOP = re.compile(
+    r"^(?P<prefix>[^/]*?)_(?P<pid>\d+)_(?P<type>assignsubmission|assignfeedback)_"
+    r"(?P<plugin>[a-z0-9]+)(?P<rest>(?:_[^/]*)?)$"
+)
 
 
 def looks_like(names: list[str]) -> bool:
@@ -35,6 +37,8 @@ def read_moodle(export: Export) -> tuple[dict[str, Found], list[str]]:
         rest = match["rest"] if match else ""
         # a folder: the rest of the path is the file (pre-4.1 folders end in "_"); flat: after the "_"
         rel = inside if inside and rest in ("", "_") else rest[1:] if not inside and rest[1:] else ""
+        if entry.link and not inside and rest in ("", "_"):
+            rel = top  # a linked folder in place of the student's: theirs, refused as a link
         if match is None or not rel or match["type"] != "assignsubmission":
             unplaced.append(entry.name)
             continue
@@ -46,8 +50,9 @@ def read_moodle(export: Export) -> tuple[dict[str, Found], list[str]]:
         found.add_file_name(entry.name)
         if match["plugin"] != "file":
             if not any("online text" in n for n in found.notices):
-                found.notices.append("Your online text on Moodle is not graded; only the files you "
-                                     "uploaded are.")
+                found.notices.append(
+                    "Your online text on Moodle is not graded; only the files you uploaded are."
+                )
             continue
         found.members.append((entry.name, rel))
     for found in students.values():

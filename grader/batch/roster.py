@@ -31,10 +31,19 @@ from grader.batch.identity import Identity
 MAX_BYTES = 32 * 1024 * 1024
 MAX_ROWS = 100_000
 HEADERS = {
-    "id": ("id", "student id", "user id", "canvas user id", "canvas id", "sid", "participant id",
-           "identifier"),
+    "id": (
+        "id",
+        "student id",
+        "user id",
+        "canvas user id",
+        "canvas id",
+        "sid",
+        "participant id",
+        "identifier",
+    ),
     "name": ("name", "student", "full name", "student name"),
-    "first": ("first name",), "last": ("last name", "surname"),
+    "first": ("first name",),
+    "last": ("last name", "surname"),
     "login": ("login", "email", "email address", "e-mail", "sis login id", "login id", "username"),
     "section": ("section", "sections"),
     "sis_id": ("sis user id", "sis id", "id number", "student number"),
@@ -72,7 +81,7 @@ def read_table(path: Path, what: str) -> tuple[list[str], list[tuple[int, dict[s
     try:
         reader = csv.reader(io.StringIO(text), delimiter=delimiter)
         header = [" ".join(h.strip().lower().split()) for h in next(reader, [])]
-        rows = []
+        rows: list[tuple[int, dict[str, str]]] = []
         for number, cells in enumerate(reader, start=2):
             if len(rows) >= MAX_ROWS:
                 raise RosterError(f"{what} {path} has more than {MAX_ROWS} rows")
@@ -99,14 +108,19 @@ def read_roster(path: Path, platform: str = "folder") -> list[RosterRow]:
     header, rows = read_table(path, "--roster")
     cols = {field: column(header, field) for field in HEADERS}
     if cols["id"] is None and cols["login"] is None:
-        raise RosterError(f"--roster {path}: no id column (one of: {', '.join(HEADERS['id'])}) and no "
-                          f"login or e-mail column; the headers are {', '.join(header)[:300]}")
+        raise RosterError(
+            f"--roster {path}: no id column (one of: {', '.join(HEADERS['id'])}) and no "
+            f"login or e-mail column; the headers are {', '.join(header)[:300]}"
+        )
     roster: list[RosterRow] = []
     seen: dict[str, int] = {}
     for line, row in rows:
         get = {field: row.get(col, "") if col else "" for field, col in cols.items()}
-        if "points possible" in get["name"].lower() or get["name"].lower() in ("student, test", "test student"):
-            continue        # Canvas's points row and its test student
+        if "points possible" in get["name"].lower() or get["name"].lower() in (
+            "student, test",
+            "test student",
+        ):
+            continue  # Canvas's points row and its test student
         sid = plain_id(get["id"]) or get["login"] or get["sis_id"]
         if not sid:
             continue
@@ -114,8 +128,20 @@ def read_roster(path: Path, platform: str = "folder") -> list[RosterRow]:
             raise RosterError(f"--roster {path}: id {sid!r} is on lines {seen[sid]} and {line}; keep one")
         seen[sid] = line
         name = get["name"] or " ".join(p for p in (get["first"], get["last"]) if p)
-        roster.append(RosterRow(Identity(id=sid, name=name, login=get["login"], section=get["section"],
-                                         sis_id=get["sis_id"], platform=platform), get["extension"], line))
+        roster.append(
+            RosterRow(
+                Identity(
+                    id=sid,
+                    name=name,
+                    login=get["login"],
+                    section=get["section"],
+                    sis_id=get["sis_id"],
+                    platform=platform,
+                ),
+                get["extension"],
+                line,
+            )
+        )
     return roster
 
 
@@ -123,10 +149,10 @@ def read_roster(path: Path, platform: str = "folder") -> list[RosterRow]:
 class Matched:
     """The roster laid over the submissions."""
 
-    identities: dict[str, Identity]           # submission id -> identity filled from its roster row
-    extensions: dict[str, str]                # submission id -> the roster's extension cell
-    missing: list[str]                        # roster ids with no submission
-    not_on_roster: list[str]                  # submission ids no roster row names
+    identities: dict[str, Identity]  # submission id -> identity filled from its roster row
+    extensions: dict[str, str]  # submission id -> the roster's extension cell
+    missing: list[str]  # roster ids with no submission
+    not_on_roster: list[str]  # submission ids no roster row names
     notes: list[str]
 
 
@@ -138,16 +164,23 @@ def match(found: dict[str, Identity], roster: list[RosterRow]) -> Matched:
     result = Matched({}, {}, [], [], [])
     taken: dict[str, str] = {}
     for sid, ident in sorted(found.items()):
-        row = (by_id.get(ident.id) or by_sis.get(ident.id) or (ident.sis_id and by_id.get(ident.sis_id))
-               or (ident.sis_id and by_sis.get(ident.sis_id))
-               or (ident.login and by_login.get(ident.login.casefold())) or None)
+        row = (
+            by_id.get(ident.id)
+            or by_sis.get(ident.id)
+            or (ident.sis_id and by_id.get(ident.sis_id))
+            or (ident.sis_id and by_sis.get(ident.sis_id))
+            or (ident.login and by_login.get(ident.login.casefold()))
+            or None
+        )
         if row is None:
             result.identities[sid] = ident
             result.not_on_roster.append(sid)
             continue
         if row.identity.id in taken:
-            result.notes.append(f"roster line {row.line} ({row.identity.id}) matches two submissions: "
-                                f"{taken[row.identity.id]} and {sid}")
+            result.notes.append(
+                f"roster line {row.line} ({row.identity.id}) matches two submissions: "
+                f"{taken[row.identity.id]} and {sid}"
+            )
         taken.setdefault(row.identity.id, sid)
         result.identities[sid] = _filled(ident, row.identity)
         if row.extension:
@@ -160,8 +193,12 @@ def _filled(ident: Identity, row: Identity) -> Identity:
     """The submission's identity with the roster's name (always for Canvas, whose download has only a
     lower-cased sortable name), login, section and SIS id where the submission has none."""
     return dataclasses.replace(
-        ident, name=row.name if row.name and (ident.platform == "canvas" or not ident.name) else ident.name,
-        login=ident.login or row.login, section=ident.section or row.section, sis_id=ident.sis_id or row.sis_id)
+        ident,
+        name=row.name if row.name and (ident.platform == "canvas" or not ident.name) else ident.name,
+        login=ident.login or row.login,
+        section=ident.section or row.section,
+        sis_id=ident.sis_id or row.sis_id,
+    )
 
 
 def stamp(when: datetime) -> str:

@@ -243,7 +243,8 @@ class _Run:
                     "seed": self.seed, "hidden": self.options.hidden, "sandbox": self.options.sandbox,
                     "grader": self.grader, "check_grader": self.options.executor == "dask"}
             if submission.held is not None:
-                self.finish(task, {"status": "held", "value": None, "message": submission.held, "seconds": 0.0})
+                self.finish(task, {"status": "held", "value": None, "message": submission.held,
+                                   "seconds": 0.0})
                 continue
             if submission.refused is not None:
                 self.finish(task, {"status": "invalid", "value": None, "message": submission.refused,
@@ -305,6 +306,8 @@ class _Run:
         submission, key = self.pending.pop(sid)
         result, html = self._settle(task, outcome)
         result["submission"] = task["display"]
+        if submission.notices and not result.get("notices"):   # not graded: what the intake noticed
+            result["notices"] = list(submission.notices)
         identity = self._identity(submission.student)
         result["batch"] = {"student": sid, "cache_key": key, "submission_sha256": submission.sha256,
                            "grader": self.grader, "root": submission.root, "identity": identity.to_json()}

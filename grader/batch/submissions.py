@@ -139,7 +139,8 @@ def _read_export_student(student: Student, limits: Limits, week: int | None) -> 
         if not files:
             raise SubmissionRefused("the submission has no files")
     except SubmissionRefused as refused:
-        return Submission(student, sha256=_hash_text(f"refused {listing} {refused}"), refused=shown(str(refused)),
+        return Submission(student, sha256=_hash_text(f"refused {listing} {refused}"),
+                          refused=shown(str(refused)),
                           notices=list(student.notices))
     except Exception as exc:  # noqa: BLE001 - whatever one submission does to the reader is its problem
         return Submission(student, sha256=_hash_text(f"refused {listing} {type(exc).__name__}"),

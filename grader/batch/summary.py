@@ -181,8 +181,9 @@ def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) ->
 def _late_points(result: dict) -> float | None:
     late = result.get("late")
     points = late.get("penalty_points") if isinstance(late, dict) else None
-    ok = isinstance(points, (int, float)) and not isinstance(points, bool) and points > 0
-    return float(points) if ok else None
+    if isinstance(points, (int, float)) and not isinstance(points, bool) and points > 0:
+        return float(points)
+    return None
 
 
 def _intake(meta: dict) -> dict | None:

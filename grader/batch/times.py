@@ -15,8 +15,14 @@ from pathlib import Path
 from grader.batch.late import PolicyError, parse_time
 from grader.batch.roster import RosterError, column, plain_id, read_table
 
-TIME_HEADERS = ("submitted_at", "submitted at", "submitted", "submission time", "last modified (submission)",
-                "time")
+TIME_HEADERS = (
+    "submitted_at",
+    "submitted at",
+    "submitted",
+    "submission time",
+    "last modified (submission)",
+    "time",
+)
 MOODLE_FORMATS = ("%A, %d %B %Y, %I:%M %p", "%A, %d %B %Y, %H:%M", "%d %B %Y, %I:%M %p", "%d %B %Y, %H:%M")
 
 
@@ -27,15 +33,20 @@ def read_times(path: Path, zone: tzinfo | None) -> dict[str, str]:
     login_col = column(header, "login")
     time_col = next((h for name in TIME_HEADERS for h in header if h == name), None)
     if (id_col is None and login_col is None) or time_col is None:
-        raise RosterError(f"--times {path}: needs an id (or e-mail) column and a time column "
-                          f"({', '.join(TIME_HEADERS)}); the headers are {', '.join(header)[:300]}")
+        raise RosterError(
+            f"--times {path}: needs an id (or e-mail) column and a time column "
+            f"({', '.join(TIME_HEADERS)}); the headers are {', '.join(header)[:300]}"
+        )
     times: dict[str, str] = {}
     for line, row in rows:
         text = row.get(time_col, "").strip()
         if text in ("", "-"):
             continue
         when = _when(text, zone, f"--times {path.name} line {line}")
-        for key in (plain_id(row.get(id_col, "")) if id_col else "", row.get(login_col, "") if login_col else ""):
+        for key in (
+            plain_id(row.get(id_col, "")) if id_col else "",
+            row.get(login_col, "") if login_col else "",
+        ):
             if key:
                 times[key.casefold() if "@" in key else key] = when.isoformat()
     return times
