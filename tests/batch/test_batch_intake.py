@@ -481,3 +481,61 @@ def test_a_folder_and_a_zip_for_one_id_is_held_not_invalid(tmp_path: Path) -> No
     page = (tmp_path / "out" / "dave.html").read_text()
     assert "being sorted out" in page and "submit again" not in page
     assert "Held: yours to sort out, not graded (1)" in (tmp_path / "out" / "summary.html").read_text()
+
+
+def test_real_grading_of_a_canvas_download(tmp_path: Path) -> None:
+    """The real grader on Canvas's entries: the solution's files uploaded one by one (go_to_goal.py
+    re-uploaded, so Canvas named it go_to_goal-1.py) are graded in full, then charged a day late; a
+    student who uploaded only notes is invalid, not a zero-point grading."""
+    solutions = Path(__file__).resolve().parents[2] / "solutions" / "week3"
+    entries = {}
+    for number, path in enumerate(sorted(solutions.glob("*.py")), start=1):
+        shown_name = "go_to_goal-1.py" if path.name == "go_to_goal.py" else path.name
+        entries[f"doejane_LATE_101_{9000 + number}_{shown_name}"] = path.read_text()
+    entries["notes_102_9100_notes.txt"] = "my notes\n"
+    export = make_zip(tmp_path / "CS101-HW3_submissions.zip", entries)
+    (tmp_path / "times.csv").write_text("id,submitted_at\n101,2026-03-02T10:00:00-05:00\n")
+    intake = IntakeOptions(times=tmp_path / "times.csv", deadline=DEADLINE, late_penalty="10%/day")
+    report = run_batch(
+        BatchOptions(
+            week=3, batch_dir=export, out=tmp_path / "out", seed=5, jobs=1, quiet=True, intake=intake
+        )
+    )
+    jane = json.loads((tmp_path / "out" / "101.json").read_text())
+    assert jane["status"] == "graded" and jane["late"]["score_before"] == jane["max_score"]
+    assert sum(c["points"] for c in jane["checks"]) == jane["max_score"]  # check points untouched
+    assert jane["score"] == round(jane["max_score"] * 0.9, 6) and jane["late"]["note"] == "1 day late"
+    assert "Late penalty" in (tmp_path / "out" / "101.html").read_text()
+    notes = json.loads((tmp_path / "out" / "102.json").read_text())
+    assert notes["status"] == "invalid" and "holds none of week 3's files" in notes["message"]
+    assert report["counts"] == {"graded": 1, "invalid": 1, "timeout": 0, "crashed": 0}
+
+
+def test_the_command_line_reads_the_intake_options() -> None:
+    """docs/batch.md's Canvas line, parsed as `grade` parses it, gives the options the tests above use."""
+    import shlex
+
+    from grader.cli import _parser
+
+    line = (
+        "week3 --batch CS101-HW3_submissions.zip --roster gradebook.csv --deadline 2026-03-01T23:59-05:00 "
+        "--late-penalty 10%/day --late-cap 50% --times times.csv --grace 15m --late-floor 20%"
+    )
+    options = BatchOptions.from_args(_parser().parse_args(shlex.split(line)))
+    assert options.intake == IntakeOptions(
+        roster=Path("gradebook.csv"),
+        times=Path("times.csv"),
+        deadline=DEADLINE,
+        late_penalty="10%/day",
+        late_cap="50%",
+        late_floor="20%",
+        grace="15m",
+    )
+    policy = options.intake.policy()
+    assert policy is not None and (
+        policy.percent,
+        policy.interval_s,
+        policy.cap_percent,
+        policy.floor_percent,
+        policy.grace_s,
+    ) == (10.0, 86400, 50.0, 20.0, 900)
