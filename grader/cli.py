@@ -99,6 +99,9 @@ def _parser() -> argparse.ArgumentParser:
     late.add_argument("--times", default=None, metavar="CSV",
                       help="submission times where the download has none (Canvas, Moodle): id and "
                            "submitted_at columns, or Moodle's grading worksheet")
+    late.add_argument("--file-times", action="store_true",
+                      help="use the files' own times as submission times where nothing else gives one (only "
+                           "when you know they are: Canvas's download dates its entries when it was zipped)")
     late.add_argument("--timezone", default=None, metavar="ZONE",
                       help="time zone of dates given without one (Moodle's worksheet): Europe/London")
     return p

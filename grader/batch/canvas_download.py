@@ -42,7 +42,8 @@ def read_canvas(export: Export) -> tuple[dict[str, Found], list[str]]:
         if match is None:
             unplaced.append(entry.name)
             continue
-        uid = match["uid"].lower() if match["uid"].lower().startswith("anon_") else match["uid"]
+        # Canvas's anonymous ids are case-sensitive (anon_a1B2c and anon_A1b2C are two students)
+        uid = "anon_" + match["uid"][5:] if match["uid"].lower().startswith("anon_") else match["uid"]
         found = students.get(uid)
         if found is None:
             found = students[uid] = Found(

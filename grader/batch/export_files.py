@@ -38,6 +38,8 @@ class Entry:
     name: str
     size: int
     link: bool = False  # a link or special file: listed so it is reported, never read
+    local_time: tuple[int, ...] = ()  # a zip entry's date and time, local to whoever zipped it
+    mtime: float = 0.0  # a file's modification time (an extracted folder)
 
 
 @dataclass
@@ -89,7 +91,8 @@ def _list_zip(export: Export, limits: ExportLimits) -> None:
         kind = entry_kind(info)
         if kind == "dir" or not parts or is_junk(parts):
             continue
-        export.entries.append(Entry("/".join(parts), max(0, info.file_size), link=kind != "file"))
+        export.entries.append(Entry("/".join(parts), max(0, info.file_size), link=kind != "file",
+                                    local_time=tuple(info.date_time)))
 
 
 def _list_folder(export: Export, limits: ExportLimits) -> None:
@@ -120,7 +123,8 @@ def _list_folder(export: Export, limits: ExportLimits) -> None:
                 export.problems.append(f"{shown('/'.join(rel))}: cannot be read ({exc.strerror})")
                 continue
             regular = stat.S_ISREG(info.st_mode)
-            export.entries.append(Entry("/".join(rel), info.st_size if regular else 0, link=not regular))
+            export.entries.append(Entry("/".join(rel), info.st_size if regular else 0, link=not regular,
+                                        mtime=info.st_mtime))
 
 
 def _walk_error(exc: OSError) -> None:

@@ -239,7 +239,9 @@ class _Run:
                     self.progress.done("skipped")
                     continue
             self.pending[student.id] = (submission, key)
-            task = {"student": student.id, "display": shown(student.path.name), "week": self.options.week,
+            display = shown(student.path.name) if student.kind in ("folder", "zip", "link", "clash") \
+                else f"{shown(student.path.name)}: {shown(student.id)}"     # one of a platform's download
+            task = {"student": student.id, "display": display, "week": self.options.week,
                     "seed": self.seed, "hidden": self.options.hidden, "sandbox": self.options.sandbox,
                     "grader": self.grader, "check_grader": self.options.executor == "dask"}
             if submission.held is not None:

@@ -225,6 +225,7 @@ def test_canvas_names_and_the_extracted_folder(tmp_path: Path) -> None:
         "doejane_101_1_go_to_goal-1.py": "x",
         "doejane_101_2_notes-1.txt": "y",  # re-upload
         "anon_a1B2c_3_go_to_goal.py": "x",
+        "anon_A1b2C_11_go_to_goal.py": "x",  # another student: Canvas's anonymous ids are case-sensitive
         "LATE_anon_zz9_4_go_to_goal.py": "x",  # anonymous
         "both_7_5_go_to_goal.py": "x",
         "both_7_6_go_to_goal-1.py": "y",  # ambiguous
@@ -237,11 +238,20 @@ def test_canvas_names_and_the_extracted_folder(tmp_path: Path) -> None:
         ("doejane_101_1_go_to_goal-1.py", "go_to_goal.py"),
         ("doejane_101_2_notes-1.txt", "notes-1.txt"),
     )
-    assert by_id["anon_a1b2c"].identity.name == "" and by_id["anon_zz9"].identity.late_flag
+    assert by_id["anon_a1B2c"].identity.name == "" and by_id["anon_zz9"].identity.late_flag
     assert by_id["7"].kind == "held" and "go_to_goal" in by_id["7"].held
     assert by_id["8"].members == (("lee_LATE_8_9_my_2_file_3_.py", "my_2_file_3_.py"),)
     flags = {sid: s.identity.late_flag for sid, s in by_id.items()}
-    assert flags == {"101": False, "anon_a1b2c": False, "anon_zz9": True, "7": False, "8": True, "9": True}
+    assert flags == {
+        "101": False,
+        "anon_a1B2c": False,
+        "anon_A1b2C": False,
+        "anon_zz9": True,
+        "7": False,
+        "8": True,
+        "9": True,
+    }
+    assert student_stem("anon_a1B2c") != student_stem("anon_A1b2C")  # two files, also case-insensitively
     # the wrong readers: one drops LATE, one knows only upper-case LATE; each misses a flag above
     export_listing = list_export(tmp_path / "names.zip")
     for wrong in (_wrong().CANVAS_ENTRY_IGNORING_LATE, _wrong().CANVAS_ENTRY_UPPER_LATE_ONLY):
@@ -539,3 +549,43 @@ def test_the_command_line_reads_the_intake_options() -> None:
         policy.floor_percent,
         policy.grace_s,
     ) == (10.0, 86400, 50.0, 20.0, 900)
+
+
+def test_file_times_only_when_asked_and_the_caps_of_an_export(tmp_path: Path) -> None:
+    from grader.batch.export_files import ExportLimits, ExportRefused
+    from grader.batch.zips import Limits
+
+    path = tmp_path / "dl.zip"
+    with zipfile.ZipFile(path, "w") as archive:
+        info = zipfile.ZipInfo("doejane_101_1_answer.txt", date_time=(2026, 3, 2, 9, 30, 0))
+        archive.writestr(info, "score 5\n" * 40)
+    assert read_class(path, IntakeOptions()).students[0].identity.submitted_at == ""  # never unasked
+    with pytest.raises(IntakeError, match="give --timezone"):
+        read_class(path, IntakeOptions(file_times=True))
+    asked = read_class(path, IntakeOptions(file_times=True, timezone="UTC")).students[0]
+    assert asked.identity.submitted_at == "2026-03-02T09:30:00+00:00"
+    # the whole export's cap, and each student's own limits on their entries
+    with pytest.raises(ExportRefused, match="more than 100 bytes"):
+        list_export(path, ExportLimits(max_total_bytes=100))
+    refused = read_submission(asked, Limits(max_total_bytes=200), week=3)
+    assert refused.refused and "size limit" in refused.refused and not refused.files
+
+
+def test_a_roster_over_a_class_folder(tmp_path: Path) -> None:
+    klass = tmp_path / "class"
+    for sid in ("alice", "bob"):
+        (klass / sid).mkdir(parents=True)
+        (klass / sid / "answer.txt").write_text("score 5\n")
+    (tmp_path / "roster.csv").write_text(
+        "Name;Email;ID;Section\nAlice A;alice@x;alice;1\nCarl C;carl@x;carl;2\n"
+    )
+    read = read_class(klass, IntakeOptions(roster=tmp_path / "roster.csv"))
+    assert read.layout == "folder" and read.missing == ["carl"] and read.not_on_roster == ["bob"]
+    alice = next(s for s in read.students if s.id == "alice")
+    assert (alice.identity.name, alice.identity.login, alice.identity.section) == ("Alice A", "alice@x", "1")
+    (tmp_path / "twice.csv").write_text("id,name\nalice,A\nalice,B\n")
+    with pytest.raises(IntakeError, match="lines 2 and 3"):
+        read_class(klass, IntakeOptions(roster=tmp_path / "twice.csv"))
+    (tmp_path / "noid.csv").write_text("fruit,colour\napple,red\n")
+    with pytest.raises(IntakeError, match="no id column"):
+        read_class(klass, IntakeOptions(roster=tmp_path / "noid.csv"))
