@@ -55,7 +55,7 @@ def copydetect_scores(codes: list, k: int = 25, window: int = 6) -> dict[frozens
 
 
 def main() -> int:
-    codes, _ = read_class(build_class(Path(tempfile.mkdtemp()) / "class"), 3)
+    codes = read_class(build_class(Path(tempfile.mkdtemp()) / "class"), 3).codes
     ours = {frozenset((p.a.id, p.b.id)): p.score for p in compare(codes, handout_blocks(3))}
     try:
         theirs = copydetect_scores(codes)

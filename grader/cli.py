@@ -82,6 +82,9 @@ def _parser() -> argparse.ArgumentParser:
     batch.add_argument("--quiet", action="store_true", help="no progress bar")
     batch.add_argument("--executor", default="local", choices=("local", "dask"))
     batch.add_argument("--scheduler", default=None, help="Dask scheduler address (with --executor dask)")
+    batch.add_argument("--similarity", action="store_true",
+                       help="after grading, also write similarity.html: pairs of students whose code blocks "
+                            "look alike (as grade similarity weekN SOURCE)")
     late = p.add_argument_group("roster and late work (with --batch; see docs/batch.md)")
     late.add_argument("--roster", default=None, metavar="CSV",
                       help="the class list: id, name, login/email, section, extension columns (a Canvas "

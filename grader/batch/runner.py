@@ -88,6 +88,7 @@ class BatchOptions:
     sandbox: str = "auto"
     budget_s: float = DEFAULT_BUDGET_S
     intake: IntakeOptions = field(default_factory=IntakeOptions)   # roster, times, late policy
+    similarity: bool = False         # --similarity: similarity.html after grading (grader/similarity)
 
     @classmethod
     def from_args(cls, args: argparse.Namespace) -> BatchOptions:
@@ -105,7 +106,7 @@ class BatchOptions:
                    executor=given.get("executor") or "local", scheduler=given.get("scheduler"),
                    sandbox=given.get("sandbox") or "auto",
                    budget_s=float(given.get("timeout") or DEFAULT_BUDGET_S),
-                   intake=IntakeOptions.from_args(given))
+                   intake=IntakeOptions.from_args(given), similarity=bool(given.get("similarity")))
 
 
 def parse_week(value: object) -> int:
@@ -182,6 +183,12 @@ def run_batch(options: BatchOptions, grade_fn: Callable[[dict], dict] | str | No
                 run.interrupted = True
             finally:
                 run.progress.close()
+            if options.similarity and not run.interrupted:    # before the summary, which links to it
+                from grader.similarity.command import after_batch
+                try:
+                    after_batch(klass, options.week, out, None if options.quiet else run.progress.stream)
+                except KeyboardInterrupt:
+                    run.interrupted = True
             return run.rebuild(executor.describe())
     except OutputBusy as exc:
         raise BatchError(str(exc)) from None

@@ -118,6 +118,8 @@ rerun the same command to finish.</p>
 {% if not_graded %}<p>Not graded yet: {{ not_graded[:200]|join(", ") }}
 {%- if not_graded|length > 200 %} and {{ not_graded|length - 200 }} more{% endif %}.</p>{% endif %}
 {% endif %}
+{% if similarity %}<p><a href="similarity.html">Similar code blocks</a>: pairs of students whose code
+looks alike.</p>{% endif %}
 {% if intake %}<div class="intake"><p>Read as {{ intake.layout }}.
 {%- if intake.policy %} Late policy: {{ intake.policy }}.{% endif %}</p>
 {% for title, names in intake.lists %}{% if names %}<p><strong>{{ title }} ({{ names|length }}):</strong>
@@ -175,7 +177,7 @@ def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) ->
         mean=sum(graded) / len(graded) if graded else None, max_score=max_score,
         histogram=histogram_svg(graded, max_score or 1.0, title="Scores of graded submissions"),
         pass_rates=pass_rate_svg([(c["id"], c["pass_rate"]) for c in stats]) if stats else "",
-        checks=stats, students=students, intake=_intake(meta))
+        checks=stats, students=students, intake=_intake(meta), similarity=meta.get("similarity_page"))
 
 
 def _late_points(result: dict) -> float | None:
@@ -204,4 +206,6 @@ def _intake(meta: dict) -> dict | None:
 
 def write_summary(out: Path, results: dict[str, dict], stems: dict[str, str], meta: dict) -> None:
     """Write ``out/summary.html``."""
+    page = out / "similarity.html"     # grade similarity's, or --similarity's, written before this page
+    meta = {**meta, "similarity_page": page.is_file() and not page.is_symlink()}
     write_atomic(out / "summary.html", summary_html(results, stems, meta))

@@ -4,7 +4,8 @@ The page ranks the pairs whose score reaches the threshold and shows each pair's
 side, the shared passages marked. It is self-contained (no scripts, no external files, the same
 Content-Security-Policy as the batch summary) and fits a 1024 px window: code wraps inside its own box.
 Every student-controlled value (ids, code, notes) reaches the page through the autoescaped template,
-made visible by ``page_text`` first; ids are cut to MAX_ID_SHOWN characters.
+made visible by ``page_text`` first; ids are cut to MAX_ID_SHOWN characters, the names students have on
+the platform or the roster (grader.batch.identity) to MAX_NAME_SHOWN.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from grader.similarity.submitted import StudentCode
 from grader.untrusted import printable
 
 MAX_ID_SHOWN = 64
+MAX_NAME_SHOWN = 60
 MAX_SIDE_BY_SIDE = 100     # pairs shown with their code; the others above the threshold are listed only
 MAX_LISTED = 2000          # pairs listed on the page and in the JSON
 
@@ -41,6 +43,9 @@ border:1px solid #ddd;padding:4px;margin:0 0 .8em 0;font-size:13px}
 mark{background:#ffd76a}h4{margin:.6em 0 .2em 0;font-size:14px}.note{color:#555}
 </style></head><body>
 <h1>Week {{ week }}: similar code blocks</h1>
+<p>Read from {{ source }}.
+{%- if unplaced_count %} {{ unplaced_count }} entries of the download could not be placed with a student
+(not compared; the batch summary lists them).{% endif %}</p>
 <p>{{ compared }} submissions compared ({{ pair_count }} pairs);
 <strong>{{ flagged|length }}</strong> pairs score {{ "%d"|format(threshold * 100) }} % or more.
 Only the students' code blocks are compared, with the handout's own lines taken out ({{ handout }});
@@ -91,6 +96,16 @@ def shown_id(sid: str) -> str:
     return text if len(text) <= MAX_ID_SHOWN else text[:MAX_ID_SHOWN - 1] + "…"
 
 
+def shown_student(sid: str, name: str = "") -> str:
+    """``101 (Doe, Jane)``: the id, and the name the platform or the roster gives, both made visible and
+    cut to length (the page escapes them)."""
+    if not name:
+        return shown_id(sid)
+    text = printable(" ".join(name.split()), multiline=False)
+    text = text if len(text) <= MAX_NAME_SHOWN else text[:MAX_NAME_SHOWN - 1] + "…"
+    return f"{shown_id(sid)} ({text})"
+
+
 def _parts(text: str, spans: list[tuple[int, int]]) -> list[tuple[str, bool]]:
     out: list[tuple[str, bool]] = []
     at = 0
@@ -108,48 +123,54 @@ def _side(code: StudentCode, spans: dict[int, list[tuple[int, int]]]) -> dict:
     blocks = [{"label": b.label, "parts": _parts(b.text, spans[i])}
               for i, b in enumerate(code.blocks) if i in spans]
     others = [b.label for i, b in enumerate(code.blocks) if i not in spans and b.compared.strip()]
-    return {"id": shown_id(code.id), "blocks": blocks, "others": others}
+    return {"id": shown_student(code.id, code.name), "blocks": blocks, "others": others}
 
 
 def pair_json(pair: Pair, rank: int) -> dict:
-    """One pair as plain data (the ids exactly as in the class folder)."""
-    return {"rank": rank, "a": pair.a.id, "b": pair.b.id, "score": pair.score, "shared": pair.shared,
-            "fingerprints": list(pair.sizes), "blocks": pair.blocks}
+    """One pair as plain data: the ids exactly as the batch has them, the names as their Identity."""
+    return {"rank": rank, "a": pair.a.id, "b": pair.b.id, "a_name": pair.a.name, "b_name": pair.b.name,
+            "score": pair.score, "shared": pair.shared, "fingerprints": list(pair.sizes),
+            "blocks": pair.blocks}
 
 
 def report_json(pairs: Sequence[Pair], codes: Sequence[StudentCode], not_compared: dict[str, str],
-                meta: dict) -> dict:
+                meta: dict, names: dict[str, str] | None = None) -> dict:
     """``similarity.json``: the settings, every pair at or above the threshold (best first, at most
-    MAX_LISTED) and who was not compared, with why."""
+    MAX_LISTED), who was not compared, with why, and everyone's name (``names``: {id: name})."""
     flagged = [p for p in pairs if p.score >= meta["threshold"]]
     return {"format": "simiam-similarity/1", **meta, "compared": len(codes),
             "pairs": [pair_json(p, r) for r, p in enumerate(flagged[:MAX_LISTED], start=1)],
             "pairs_above_threshold": len(flagged),
             "notes": {c.id: c.notes for c in codes if c.notes},
-            "not_compared": dict(sorted(not_compared.items()))}
+            "not_compared": dict(sorted(not_compared.items())), "names": dict(sorted((names or {}).items()))}
 
 
 def similarity_html(pairs: Sequence[Pair], codes: Sequence[StudentCode], not_compared: dict[str, str],
-                    meta: dict) -> str:
-    """The page (``meta``: week, threshold, k, window, common, handout)."""
+                    meta: dict, names: dict[str, str] | None = None) -> str:
+    """The page (``meta``: week, threshold, k, window, common, handout, source, unplaced_count;
+    ``names``: {id: name} of those not compared)."""
+    names = names or {}
     flagged = []
     above = [p for p in pairs if p.score >= meta["threshold"]]
     for rank, p in enumerate(above[:MAX_LISTED], start=1):
-        view = {"rank": rank, "a": shown_id(p.a.id), "b": shown_id(p.b.id), "score": p.score,
-                "shared": p.shared, "sizes": p.sizes, "blocks": p.blocks, "shown": rank <= MAX_SIDE_BY_SIDE}
+        view = {"rank": rank, "a": shown_student(p.a.id, p.a.name), "b": shown_student(p.b.id, p.b.name),
+                "score": p.score, "shared": p.shared, "sizes": p.sizes, "blocks": p.blocks,
+                "shown": rank <= MAX_SIDE_BY_SIDE}
         if view["shown"]:
             view["sides"] = [_side(p.a, p.spans[0]), _side(p.b, p.spans[1])]
         flagged.append(view)
-    below = [{"a": shown_id(p.a.id), "b": shown_id(p.b.id), "score": p.score}
+    below = [{"a": shown_student(p.a.id, p.a.name), "b": shown_student(p.b.id, p.b.name), "score": p.score}
              for p in pairs if p.score < meta["threshold"]][:5]
     n = len(codes)
     return _env.from_string(_TEMPLATE).render(
         csp=STATIC_PAGE_CSP, week=meta["week"], threshold=meta["threshold"], k=meta["k"],
         window=meta["window"], common=meta["common"], handout=meta["handout"], compared=n,
         pair_count=n * (n - 1) // 2, flagged=flagged, shown=MAX_SIDE_BY_SIDE, best_below=below,
-        not_compared=[{"id": shown_id(sid), "why": why} for sid, why in sorted(not_compared.items())],
-        notes=[{"id": shown_id(c.id), "notes": c.notes[:5]} for c in sorted(codes, key=lambda c: c.id)
-               if c.notes][:MAX_LISTED])
+        source=meta.get("source") or "a class folder", unplaced_count=meta.get("unplaced_count") or 0,
+        not_compared=[{"id": shown_student(sid, names.get(sid, "")), "why": why}
+                      for sid, why in sorted(not_compared.items())],
+        notes=[{"id": shown_student(c.id, c.name), "notes": c.notes[:5]}
+               for c in sorted(codes, key=lambda c: c.id) if c.notes][:MAX_LISTED])
 
 
 def print_top(pairs: Sequence[Pair], threshold: float, stream: TextIO, top: int = 10) -> None:
@@ -159,7 +180,7 @@ def print_top(pairs: Sequence[Pair], threshold: float, stream: TextIO, top: int 
     for rank, p in enumerate(above[:top], start=1):
         labels = list(dict.fromkeys(m["a"] for m in p.blocks))     # most shared first, each once
         blocks = ", ".join(labels[:3]) + (", ..." if len(labels) > 3 else "")
-        print(f"  {rank:>3}. {p.score:>4.0%}  {shown_id(p.a.id)}  {shown_id(p.b.id)}  ({blocks})",
-              file=stream)
+        print(f"  {rank:>3}. {p.score:>4.0%}  {shown_student(p.a.id, p.a.name)}  "
+              f"{shown_student(p.b.id, p.b.name)}  ({blocks})", file=stream)
     if len(above) > top:
         print(f"  ... and {len(above) - top} more", file=stream)

@@ -49,11 +49,13 @@ class ComparedBlock:
 
 @dataclass
 class StudentCode:
-    """A student's compared blocks, and what the page says about how they were read."""
+    """A student's compared blocks, and what the page says about how they were read. ``name`` is the
+    one their Identity gives (the platform's or the roster's; "" for a class folder without a roster)."""
 
     id: str
     blocks: list[ComparedBlock] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    name: str = ""
 
 
 def handout_text(week: int, name: str) -> str | None:

@@ -23,7 +23,7 @@ from grader.similarity.tokens import block_tokens
 
 
 def _scores(folder: Path) -> dict[frozenset, float]:
-    codes, _ = read_class(folder, 3)
+    codes = read_class(folder, 3).codes
     return {frozenset((p.a.id, p.b.id)): p.score for p in compare(codes, command.handout_blocks(3))}
 
 
@@ -48,7 +48,7 @@ def test_wrong_comparer_is_caught(week3_class: Path, monkeypatch: pytest.MonkeyP
 
 
 def test_handout_alone_shares_nothing(week3_class: Path) -> None:
-    codes, _ = read_class(week3_class, 3)
+    codes = read_class(week3_class, 3).codes
     stubs = [c for c in codes if c.id in STUBS]
     assert [len(c.blocks) for c in stubs] == [8, 8], "the stub's 8 blocks are read, then blanked"
     pairs = compare(codes, handout_blocks(3))
@@ -70,7 +70,8 @@ def test_page_json_and_printed_list(week3_class: Path, tmp_path: Path) -> None:
                     "go_to_goal.py: GoToGoal.execute (block 2)", "go_to_goal.py: GoToGoal.execute (block 3)",
                     "qb_supervisor.py: QBSupervisor.ensure_w"}, first["blocks"]
     printed = out.getvalue()
-    assert printed.startswith("3 pairs score 60% or more\n    1. 100%  ana  ana_renamed  ("), printed
+    assert printed.startswith("reading class folder (one folder or .zip per student id): class, 9 students\n"
+                              "3 pairs score 60% or more\n    1. 100%  ana  ana_renamed  ("), printed
     page = (tmp_path / "out" / "similarity.html").read_text()
     assert page.count('<section class="pair"') == 3 and "Content-Security-Policy" in page
     # chen's ensure_w, copied by dana, is marked on both sides
@@ -80,7 +81,7 @@ def test_page_json_and_printed_list(week3_class: Path, tmp_path: Path) -> None:
 
 
 def test_one_block_copy_is_marked_in_that_block(week3_class: Path) -> None:
-    codes, _ = read_class(week3_class, 3)
+    codes = read_class(week3_class, 3).codes
     pair = next(p for p in compare(codes, handout_blocks(3)) if {p.a.id, p.b.id} == {"chen", "dana"})
     assert pair.blocks[0]["a"] == pair.blocks[0]["b"] == "qb_supervisor.py: QBSupervisor.ensure_w"
     dana = pair.b if pair.b.id == "dana" else pair.a

@@ -43,9 +43,9 @@ def no_handout(week: int) -> list:
 
 
 WRONG = {
-    "whole files, handout text included": [("grader.similarity.command", "student_code", whole_files),
+    "whole files, handout text included": [("grader.similarity.students", "student_code", whole_files),
                                           ("grader.similarity.command", "handout_blocks", no_handout)],
-    "blocks with the handout's lines kept": [("grader.similarity.command", "student_code", blocks_unblanked),
+    "blocks with the handout's lines kept": [("grader.similarity.students", "student_code", blocks_unblanked),
                                              ("grader.similarity.command", "handout_blocks", no_handout)],
     "identifiers not normalised": [("grader.similarity.tokens", "normalised", names_kept)],
 }
