@@ -176,7 +176,8 @@ def similarity_html(pairs: Sequence[Pair], codes: Sequence[StudentCode], not_com
 def print_top(pairs: Sequence[Pair], threshold: float, stream: TextIO, top: int = 10) -> None:
     """The best pairs at or above the threshold, one line each, for the terminal."""
     above = [p for p in pairs if p.score >= threshold]
-    print(f"{len(above)} pairs score {threshold:.0%} or more", file=stream)
+    said = "1 pair scores" if len(above) == 1 else f"{len(above)} pairs score"
+    print(f"{said} {threshold:.0%} or more", file=stream)
     for rank, p in enumerate(above[:top], start=1):
         labels = list(dict.fromkeys(m["a"] for m in p.blocks))     # most shared first, each once
         blocks = ", ".join(labels[:3]) + (", ..." if len(labels) > 3 else "")
