@@ -43,11 +43,10 @@ border:1px solid #ddd;padding:4px;margin:0 0 .8em 0;font-size:13px}
 mark{background:#ffd76a}h4{margin:.6em 0 .2em 0;font-size:14px}.note{color:#555}
 </style></head><body>
 <h1>Week {{ week }}: similar code blocks</h1>
-<p>Read from {{ source }}.
-{%- if unplaced_count %} {{ unplaced_count }} entries of the download could not be placed with a student
-(not compared; the batch summary lists them).{% endif %}</p>
+<p>Read from {{ source }}.</p>
 <p>{{ compared }} submissions compared ({{ pair_count }} pairs);
-<strong>{{ flagged|length }}</strong> pairs score {{ "%d"|format(threshold * 100) }} % or more.
+<strong>{{ flagged|length }}</strong> {{ "pair scores" if flagged|length == 1 else "pairs score" }}
+{{ "%d"|format(threshold * 100) }} % or more.
 Only the students' code blocks are compared, with the handout's own lines taken out ({{ handout }});
 names, comments and layout do not count. A pair's score is the share of the smaller side's
 fingerprints (runs of {{ k }} tokens, winnowed over windows of {{ window }}) that the other side has too;
@@ -71,6 +70,9 @@ them all.</p>{% endif %}
 {%- if not loop.last %}; {% endif %}{% endfor %}.</p>{% endif %}
 {% if not_compared %}<h2>Not compared</h2><ul>
 {% for s in not_compared %}<li>{{ s.id }}: {{ s.why }}</li>{% endfor %}</ul>{% endif %}
+{% if unplaced %}<p>{{ unplaced_count }} {{ "entry" if unplaced_count == 1 else "entries" }} of the
+download could not be placed with any student (not compared): {{ unplaced|join("; ") }}
+{%- if unplaced_count > unplaced|length %}; …{% endif %}.</p>{% endif %}
 {% if notes %}<h2>Compared in part</h2><ul>
 {% for s in notes %}<li>{{ s.id }}: {{ s.notes|join("; ") }}</li>{% endfor %}</ul>{% endif %}
 {% for p in flagged[:shown] %}
@@ -166,7 +168,8 @@ def similarity_html(pairs: Sequence[Pair], codes: Sequence[StudentCode], not_com
         csp=STATIC_PAGE_CSP, week=meta["week"], threshold=meta["threshold"], k=meta["k"],
         window=meta["window"], common=meta["common"], handout=meta["handout"], compared=n,
         pair_count=n * (n - 1) // 2, flagged=flagged, shown=MAX_SIDE_BY_SIDE, best_below=below,
-        source=meta.get("source") or "a class folder", unplaced_count=meta.get("unplaced_count") or 0,
+        source=meta.get("source") or "a class folder", unplaced=meta.get("unplaced") or [],
+        unplaced_count=meta.get("unplaced_count") or 0,
         not_compared=[{"id": shown_student(sid, names.get(sid, "")), "why": why}
                       for sid, why in sorted(not_compared.items())],
         notes=[{"id": shown_student(c.id, c.name), "notes": c.notes[:5]}
