@@ -109,8 +109,9 @@ def after_batch(klass: ClassList, week: int, out: Path, stream: TextIO | None) -
         if stream is not None:
             print("similarity of the students' code blocks:", file=stream)
         compare_class(klass, week, out, stream=stream)
-    except (SimilarityError, OSError) as exc:
-        print(f"similarity: not written: {printable(str(exc), multiline=False)}",
+    except Exception as exc:  # noqa: BLE001 - the grades come first: the batch still writes its class files
+        why = str(exc) if isinstance(exc, (SimilarityError, OSError)) else f"{type(exc).__name__}: {exc}"
+        print(f"similarity: not written: {printable(why[:500], multiline=False)}",
               file=stream if stream is not None else sys.stderr)
 
 

@@ -22,8 +22,9 @@ from batch_helpers import make_zip
 from grader.batch.intake import IntakeOptions
 from grader.batch.runner import BatchOptions, run_batch
 from grader.cli import main as grade_main
-from grader.similarity.command import THRESHOLD, read_class
+from grader.similarity.command import THRESHOLD, after_batch, read_class
 from grader.similarity.compare import compare
+from grader.similarity.students import read_source
 from grader.similarity.submitted import handout_blocks
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -244,3 +245,31 @@ def test_batch_option(download: tuple, tmp_path: Path, monkeypatch: pytest.Monke
     _batch(zip_path, roster_path, tmp_path / "wrong")
     assert '<a href="similarity.html">' not in (tmp_path / "wrong" / "summary.html").read_text(), \
         "the wrong summary is not caught"
+
+
+def test_the_batch_hook_writes_no_link_and_never_stops_the_batch(download: tuple, tmp_path: Path) -> None:
+    """--similarity's call: a link planted at similarity.json is refused, never written through; a page
+    that cannot be written is said, and the call returns (the batch then writes its class files)."""
+    zip_path, roster_path, _scores = download
+    klass = read_source(zip_path, roster=roster_path)
+    out = tmp_path / "graded"
+    out.mkdir()
+    outside = tmp_path / "outside.json"
+    outside.write_text("mine\n")
+    (out / "similarity.json").symlink_to(outside)
+    said = io.StringIO()
+    after_batch(klass, 3, out, said)
+    assert outside.read_text() == "mine\n", "written through the link"
+    last = said.getvalue().splitlines()[-1]
+    assert last.startswith("similarity: not written: ") and "link" in last, said.getvalue()
+    blocked = tmp_path / "blocked"
+    (blocked / "similarity.html").mkdir(parents=True)       # cannot be replaced by a file
+    said = io.StringIO()
+    after_batch(klass, 3, blocked, said)
+    assert said.getvalue().splitlines()[-1].startswith("similarity: not written: "), said.getvalue()
+    failing = "grader.similarity.command.compare_class"
+    with pytest.MonkeyPatch.context() as patch:     # whatever breaks in it, the call returns
+        patch.setattr(failing, lambda *a, **k: 1 / 0)
+        said = io.StringIO()
+        after_batch(klass, 3, blocked, said)
+    assert said.getvalue().splitlines()[-1] == "similarity: not written: ZeroDivisionError: division by zero"
