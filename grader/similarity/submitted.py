@@ -18,10 +18,9 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 from simiam.course.blocks import BlockError, dedent_body, find_blocks, source_lines
-from simiam.course.placeholders import placeholder_for
 from simiam.course.shipped import shipped_version
 from simiam.course.skeleton_stamp import SKELETONS
-from simiam.course.weeks import get_week
+from simiam.course.weeks import get_week, placeholder_for
 
 MAX_CHARS = 64 * 1024     # a student's compared text; beyond it the blocks are cut, and a note says so
 MAX_BLOCK_CHARS = 16 * 1024   # one block's (the course's longest is under 2 KB): one huge block in an early

@@ -155,7 +155,7 @@ def test_monkeypatching_stays_inside_the_worker(open_one):
     assert not numpy.allclose(1.0, 2.0)
     with pytest.raises(validate.BadValue):
         validate.as_float("100")
-    from simiam.robot.quickbot import spec_for_week
+    from simiam.course.weeks import spec_for_week
 
     assert spec_for_week(3) is not None
 
@@ -288,7 +288,7 @@ def test_sleeping_past_the_limit_until_the_budget_is_spent(open_one):
 
 
 def test_robot_limits_changed_in_the_worker_stay_there(open_one):
-    from simiam.robot.quickbot import spec_for_week
+    from simiam.course.weeks import spec_for_week
 
     before = spec_for_week(3).max_vel
     session = open_one("robot_limits")
