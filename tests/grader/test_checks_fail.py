@@ -44,6 +44,7 @@ MESSAGES = {
     "week3_gains_in_execute": {"week3.pid.memory": "execute overwrote Kp/Ki/Kd"},
     "week3_single_wrap": {"week3.go_to_goal.error_wrap": "wrapped into [-pi, pi]"},
     "week3_theta_g_from_origin": {"week3.go_to_goal.theta_g": "from the robot's position"},
+    "week3_theta_g_atan2_swapped": {"week3.go_to_goal.theta_g": "3.1416 rad off, expected 2.3562"},
     "week2_ir_no_divider": {"week2.ir.table": "wildly off (-8.886e+13 m)",
                             "week2.ir.simulator": "wildly off (-8.886e+13 m)"},
     "week2_half_turn": {"week2.go_to_angle.reaches_theta_d": "ended 0.032 rad away"},
@@ -78,7 +79,7 @@ MESSAGES = {
     "week7_sigma_cramer_sign": {"week7.sliding.sigma": "sigma_2 has the wrong sign"},
     "week7_sigma_transposed": {"week7.sliding.sigma": "as the ROWS; solve"},
     "week7_progress_strict": {"week7.progress.made": "a step with no encoder tick"},
-    "week7_progress_point_never_set": {"week7.navigate.release_goal": "never calls self.set_progress_point"},
+    "week7_progress_point_never_set": {"week7.navigate.release_goal": "calls self.set_progress_point() when"},
     "week7_stub_thresholds": {"week7.navigate.release_goal": "tune d_at_obs and d_unsafe"},
 }
 

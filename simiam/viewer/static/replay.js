@@ -431,8 +431,9 @@
     var headings = [];
     OVERLAYS.forEach(function (o) {
       if (o.kind === "scalar") {
-        hs.push({ label: o.name, ys: o.data, color: o.color, dash: [5, 3], breakOnWrap: true, width: 1.6 });
-        headings.push(o.name);
+        // the controller's own value (the report's static chart draws θ_g from the true position)
+        hs.push({ label: o.name + " (controller)", ys: o.data, color: o.color, dash: [5, 3], breakOnWrap: true, width: 1.6 });
+        headings.push(o.name + " (controller)");
       }
     });
     hs.push({ label: "θ (true)", ys: S.theta.map(wrap), color: "#9aa3ae", breakOnWrap: true, width: 1 });
