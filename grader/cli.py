@@ -6,7 +6,8 @@
     grade week3 --solutions --hidden # the reference solutions, with the instructor's hidden checks
     grade all                        # every week
     grade week3 --batch submissions/ --jobs 4 --out graded/
-    grade handout week3 --out release/   # and: grade package gradescope|prairielearn weekN, grade selfcheck
+    grade handout week3 --out release/   # and: grade package gradescope|prairielearn|coursera weekN,
+                                         #      grade selfcheck
 
 Exit status: 0 every check passed, 1 some check did not, 2 the command itself could not run.
 """
@@ -20,6 +21,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from grader.grading import DEFAULT_SEED, CourseFilesMissing, grade_submission, write_outputs
+from grader.platforms.cli import PLATFORMS
 from grader.result import all_passed
 from grader.sandbox.capabilities import has_module
 from grader.terminal import print_result
@@ -35,7 +37,7 @@ PLATFORM_COMMANDS = ("handout", "package", "selfcheck")   # grader.platforms.cli
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="grade", description="Grade a Control of Mobile Robots (QuickBot) assignment.",
-        epilog="Instructors: grade handout weekN, grade package gradescope|prairielearn weekN, "
+        epilog=f"Instructors: grade handout weekN, grade package {'|'.join(PLATFORMS)} weekN, "
                "grade selfcheck (grade handout --help, ...; see docs/platforms.md).",
     )
     p.add_argument("week", help=f"week{min(week_numbers())} .. week{max(week_numbers())}, or all")
@@ -71,7 +73,9 @@ def _parser() -> argparse.ArgumentParser:
     )
     batch.add_argument("--force", action="store_true", help="regrade what is already graded")
     batch.add_argument("--quiet", action="store_true", help="no progress bar")
-    batch.add_argument("--executor", default="local", choices=("local", "dask"))
+    batch.add_argument("--executor", default="local", choices=("local", "dask"),
+                       help="where the submissions are graded: local (--jobs processes on this machine, the "
+                            "default) or dask (the workers of the Dask cluster at --scheduler)")
     batch.add_argument("--scheduler", default=None, help="Dask scheduler address (with --executor dask)")
     return p
 

@@ -33,7 +33,7 @@ TRACKING_TURN = (1.0, 2.2)  # rad: the hidden tracking goal's turn from the star
 EXCLUDED_FILE = Path(__file__).parent / "expected" / "week3_tracking_excluded.json"
 OVERSHOOT_LIMIT = 0.10
 SETTLE = Limit("settle time", "s", SETTLE_LIMIT, above=False)
-OVERSHOOT = Limit("overshoot", "", OVERSHOOT_LIMIT, above=False)  # a fraction of theta_g
+OVERSHOOT = Limit("overshoot", "", OVERSHOOT_LIMIT, above=False, percent=True)  # a fraction of theta_g
 REACH_HINT = (
     "Hint: the robot steers by your theta_g, the wrapped error and the PID terms (their own checks say which "
     "one is wrong), and ensure_w must keep w; replay the run in the report to see where it goes"
