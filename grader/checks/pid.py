@@ -109,8 +109,8 @@ def theta_g(ctx: Context) -> Outcome:
             raise Mismatch(
                 f"{_where([x, y, theta], [x_g, y_g])} your theta_g was "
                 f"{'missing' if got is None else fmt(got)}{off}, expected {fmt(ref.bearing(u_x, u_y))}: it "
-                f"must point from the robot's position along the vector to the goal ({fmt(u_x)}, {fmt(u_y)}), "
-                f"math.atan2(u_y, u_x) = math.atan2({fmt(u_y)}, {fmt(u_x)})"
+                "must point from the robot's position along the vector to the goal "
+                f"({fmt(u_x)}, {fmt(u_y)}), math.atan2(u_y, u_x) = math.atan2({fmt(u_y)}, {fmt(u_x)})"
             )
 
     quadrants = [

@@ -20,6 +20,5 @@ def test_every_visible_check_but_the_listed_ones_has_a_kept_wrong_version() -> N
     for patch in (DATA / "wrong").glob("*.patch"):
         aimed |= set(read_mistake(patch).aims or ())
     visible = {c.id for week in week_numbers() for c in checks_for_week(week) if c.visibility != "hidden"}
-    assert aimed <= visible | {c.id for w in week_numbers() for c in checks_for_week(w)}, aimed - visible
     assert visible - aimed == CAUGHT_BY_NONE, sorted((visible - aimed) ^ CAUGHT_BY_NONE)
     assert "week3.pid.proportional" in aimed
