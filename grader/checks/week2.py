@@ -66,7 +66,7 @@ def round_trip_hint(v: float, w: float, got_v: float, got_w: float) -> str:
     v_right = k_v is None and _close(got_v, v) or _near(k_v, 1.0)
     if v_right and _near(k_w, -1.0):
         return "v is right and w reversed: check which wheel is which (vel_r = (2v + wL)/(2R))"
-    if v_right and (_near(k_w, 2.0) or _near(k_w, 0.5)):
+    if v_right and k_w is not None and (_near(k_w, 2.0) or _near(k_w, 0.5)):
         return f"v is right and w came out {fmt(k_w)} times the asked: check L/2 vs L"
     said = [f"{name} came out {fmt(k)} times the asked" if k is not None else f"{name} came out {fmt(got)}"
             for name, k, got in (("v", k_v, got_v), ("w", k_w, got_w))]
@@ -214,7 +214,8 @@ def _table_hint(misses: list[tuple[float, float, int, float]], rows: int, divide
         at = ", ".join(f"{fmt(v)} V" for _, v, _, _ in misses)
         return (f"{fit} of the {rows} table rows are within 5 %, so your volts are right: the polynomial "
                 f"misses at {at}; check coeff, a degree-5 fit with every digit kept")
-    return f"{len(misses)} of the {rows} table rows are off: divide by {fmt(divider)} to get volts"
+    return (f"{len(misses)} of the {rows} table rows are off: check that you divide by {fmt(divider)} to get "
+            "volts, then that coeff is the table's degree-5 fit")
 
 
 def ir_simulator(ctx: Context) -> Outcome:
