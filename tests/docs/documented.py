@@ -57,8 +57,8 @@ SKIPPED = (
     Skip(r"^grade selfcheck", "every week's solutions, stubs and wrong versions: minutes of CPU "
          "(tests/platforms/test_selfcheck.py runs it week by week)"),
     Skip(r"AUTOGRADER_ROOT=|GRADE_ROOT=|COURSERA_SHARED=",
-         "the platform image's own scripts, in /tmp/ag, /tmp/grade or /tmp/shared and (Gradescope, "
-         "PrairieLearn) as root: tests/platforms (test_gradescope_bundle.py, test_prairielearn.py, "
+         "the platform image's own scripts, in a fresh mktemp folder and (Gradescope, PrairieLearn) as "
+         "root: tests/platforms (test_gradescope_bundle.py, test_prairielearn.py, "
          "test_coursera.py) run them in a temporary root", scope="block"),
     Skip(r"benchmarks/|grader\.sandbox\.bench|^simiam bench|importtime|pythonX\.Y|batch-main|<branch>|"
          r"import numpy",

@@ -22,13 +22,15 @@ from conftest import SEED, base_env
 from coursera_spec import coursera_violations
 from mistakes import ROOT, build
 
-from grader.checks.week3 import TRACKING_TURN, seeded_goals, tracking_excluded
+from grader.checks.week3 import TRACKING_TURN, seeded_goals, seeded_start_and_goal, tracking_excluded
 from grader.platforms.coursera import feedback
 from grader.platforms.handout import handout_files, leaks
 
 PART = "simW3"
-# week 3's hidden checks drive to goals drawn from the seed; the way the checks write them
-HIDDEN_GOALS = [f"({x:g}, {y:g})" for x, y in [*seeded_goals(SEED, 3, "hidden"),
+# week 3's hidden checks drive to goals drawn from the seed (the third from a start away from the origin);
+# the way the checks write them
+HIDDEN_GOALS = [f"({x:g}, {y:g})" for x, y in [*seeded_goals(SEED, 2, "hidden"),
+                                                seeded_start_and_goal(SEED, "hidden")[1],
                                                 *seeded_goals(SEED, 1, "tracking", TRACKING_TURN,
                                                               tracking_excluded())]]
 
