@@ -42,6 +42,7 @@ from grader.batch.fallback_page import fallback_page
 from grader.batch.names import shown, student_stem
 from grader.batch.progress import Progress
 from grader.batch.store import OutputBusy, exclusive, folder_seed, read_json, write_atomic, write_json
+from grader.batch.stored import well_formed
 from grader.batch.submissions import Student, Submission, discover, pack, read_submission
 from grader.batch.summary import write_summary
 from grader.result_size import bound_html, bound_result
@@ -308,7 +309,7 @@ class _Run:
         results = {}
         for student in self.students:
             stored = read_json(self.out / f"{self.stems[student.id]}.json")
-            if stored is not None and self._current(stored):
+            if well_formed(stored) and self._current(stored):  # a malformed one waits for its regrade
                 results[student.id] = stored
             else:
                 self._supersede(self.stems[student.id])
