@@ -7,7 +7,7 @@ result is data to check, not to trust: one with a valid cache key and ``"points"
 resumed batch in summary.py (issue 30 item 6). `problem` is the one cheap check every reader uses: a result
 it finds fault with is regraded by the runner and left out of the class files until it is, never read.
 
-What it checks is what the class files compute with: the status a text, the week a whole number, the score
+What it checks is what the class files compute with: the status a text, the score
 and maximum finite numbers (or null where a crashed grading has none), every check a dict with text id and
 status and finite points, the batch record a dict, and a late-policy record (when present) with finite
 figures. Text fields other readers show are bounded where they are shown, not here.
@@ -45,8 +45,6 @@ def problem(result: Any) -> str | None:
         return "not a JSON object"
     if not isinstance(result.get("status"), str):
         return "no text status"
-    if type(result.get("week")) is not int:
-        return "no whole-number week"
     for key in ("score", "max_score"):
         value = result.get(key)
         if value is not None and not _number(value):
