@@ -26,7 +26,8 @@ LIMITS = Limits(call_seconds=5.0, total_seconds=60.0)
 BIGGEST = int(sys.float_info.max)
 
 
-@pytest.mark.parametrize("value", [2**1024 - 1, -(2**1024 - 1), BIGGEST + 1, [1.0, {"n": BIGGEST + 1}]])
+@pytest.mark.parametrize("value", [2**1024 - 1, -(2**1024 - 1), BIGGEST + 1, [1.0, {"n": BIGGEST + 1}]],
+                         ids=["2**1024-1", "-(2**1024-1)", "float-max+1", "nested"])
 def test_integers_no_float_holds_are_refused_on_both_sides(value):
     with pytest.raises(OutOfBounds, match="too large"):
         weigh(value)                                      # the grader's side (grader.sandbox.runner)
@@ -34,7 +35,8 @@ def test_integers_no_float_holds_are_refused_on_both_sides(value):
         protocol.to_json(value)                           # the worker's side
 
 
-@pytest.mark.parametrize("value", [BIGGEST, -BIGGEST, 10**300, 0, -1])
+@pytest.mark.parametrize("value", [BIGGEST, -BIGGEST, 10**300, 0, -1],
+                         ids=["float-max", "-float-max", "10**300", "0", "-1"])
 def test_integers_a_float_holds_pass(value):
     assert MAX_NUMBER == BIGGEST
     weigh(value)
