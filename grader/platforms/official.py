@@ -47,13 +47,18 @@ class NoSandbox(BundleBroken):
 
 def refuse_unsandboxed() -> None:
     """NoSandbox unless student code can be kept from the grader here: bubblewrap works, or the grader runs
-    as root (the worker then drops to a dedicated uid that cannot read the secret or the results)."""
+    as root with a spare uid mapped (the worker then drops to a dedicated uid that cannot read the secret or
+    the results; a root with no uid to drop to, as in a single-uid user namespace, is refused too)."""
+    from grader.sandbox import isolation
     from grader.sandbox.capabilities import is_root
-    from grader.sandbox.isolation import bwrap_works
 
-    works, why = bwrap_works()
-    if works or is_root():
+    works, why = isolation.bwrap_works()
+    if works:
         return
+    if is_root():
+        if isolation.pick_uid() is not None:
+            return
+        why += "; and though the grader is root, no spare uid is mapped here for the worker to drop to"
     uid = os.geteuid() if hasattr(os, "geteuid") else "unknown"
     raise NoSandbox(
         f"official grading refused: student code would run under the grader's own uid ({uid}) with no "

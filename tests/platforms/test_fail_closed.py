@@ -48,12 +48,14 @@ def folder():
     subprocess.run(["rm", "-rf", str(base)], check=False)
 
 
-@pytest.mark.parametrize("bwrap, root, refused", [(True, False, False), (False, True, False),
-                                                  (True, True, False), (False, False, True)])
+@pytest.mark.parametrize("bwrap, root, spare_uid, refused", [
+    (True, False, False, False), (False, True, True, False), (True, True, True, False),
+    (False, False, False, True), (False, True, False, True)])   # the last: root with no uid to drop to
 def test_official_grading_refuses_only_where_nothing_keeps_student_code_from_the_grader(
-        monkeypatch, bwrap, root, refused):
+        monkeypatch, bwrap, root, spare_uid, refused):
     monkeypatch.setattr(isolation, "bwrap_works", lambda: (bwrap, "" if bwrap else WHY))
     monkeypatch.setattr(capabilities, "is_root", lambda: root)
+    monkeypatch.setattr(isolation, "pick_uid", lambda: 234_567 if spare_uid else None)
     if not refused:
         refuse_unsandboxed()
         return
