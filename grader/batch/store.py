@@ -69,9 +69,10 @@ def output_folder(out: Path) -> Iterator[Path]:
 
 
 def _root_of(path: Path) -> Path | None:
-    """The held output folder ``path`` lies below (the innermost), or None."""
+    """The held output folder ``path`` lies below (the outermost, so that every level below it is checked),
+    or None."""
     with _roots_lock:
-        roots = sorted(_roots, key=lambda r: len(r.parts), reverse=True)
+        roots = sorted(_roots, key=lambda r: len(r.parts))
     for candidate in (path, path.absolute()):
         for root in roots:
             if candidate != root and candidate.is_relative_to(root):
