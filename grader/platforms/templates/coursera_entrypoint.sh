@@ -19,7 +19,7 @@ if [ "$status" -ne 0 ]; then
     if [ "$status" -eq 3 ]; then
         why="The grader is not set up to run code safely on this grading machine, so your code was not run and nothing was graded; your course staff can see why and will regrade."
     else
-        why="The grader itself failed (exit status $status), not because of your code; your instructor can see why and will regrade."
+        why="The grader itself failed, not because of your code (exit status $status); your instructor can see why and will regrade."
     fi
     printf '{"fractionalScore": 0.0, "feedback": "%s"}\n' "$why" > "$SHARED/feedback.json" || exit 1
 fi

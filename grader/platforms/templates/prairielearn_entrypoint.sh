@@ -15,6 +15,6 @@ if [ "$status" -ne 0 ]; then
     # any non-zero exit is a failure: a results.json there was not written by a finished grading (a killed
     # grader, a forged file), so it is replaced with the failure; if it cannot be, this exits non-zero too
     rm -f "$GRADE_ROOT/results/results.json" || exit 1
-    printf '{"gradable": false, "format_errors": ["The grader itself failed (exit status %s), not because of your code; your instructor will look into it."]}\n' "$status" > "$GRADE_ROOT/results/results.json" || exit 1
+    printf '{"gradable": false, "format_errors": ["The grader itself failed, not because of your code (exit status %s); your instructor will look into it."]}\n' "$status" > "$GRADE_ROOT/results/results.json" || exit 1
 fi
 exit 0
