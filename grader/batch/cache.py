@@ -16,6 +16,8 @@ import json
 from importlib import metadata
 from pathlib import Path
 
+from grader.batch.stored import well_formed
+
 _SUFFIXES = {".py", ".j2", ".html", ".xml", ".json", ".css", ".js", ".txt"}
 # Batch plumbing does not change a grade, except task.py, which calls the grader and rewrites paths.
 _NOT_GRADING = ("grader/batch/",)
@@ -62,8 +64,10 @@ def cache_key(week: int, seed: int, hidden: bool, submission_sha256: str, grader
 
 
 def is_fresh(stored: dict | None, key: str) -> bool:
-    """True when ``stored`` (a per-student result, or None) can be reused for ``key``."""
-    if not isinstance(stored, dict) or stored.get("status") not in FINAL_STATUSES:
+    """True when ``stored`` (a per-student result, or None) can be reused for ``key``: a final status, the
+    same key, and a shape the class files can be built from (grader.batch.stored: a malformed one is
+    regraded, never trusted)."""
+    if not isinstance(stored, dict) or stored.get("status") not in FINAL_STATUSES or not well_formed(stored):
         return False
     batch = stored.get("batch")
     return isinstance(batch, dict) and batch.get("cache_key") == key

@@ -11,7 +11,7 @@ import io
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from grader.batch.store import write_atomic, write_json
+from grader.batch.store import output_folder, write_atomic, write_json
 
 GRADESCOPE_VISIBILITY = ("visible", "hidden", "after_due_date", "after_published")
 
@@ -119,11 +119,13 @@ def write_exports(out: Path, results: dict[str, dict], stems: dict[str, str],
     """Write ``gradebook.csv`` and ``gradescope/<id>/results.json`` for every student in ``results``.
 
     The Gradescope files are written by a few threads: each write waits for its fsync, and at the end of
-    a batch the cores have nothing else to do (400 students: 5.3-6.7 s one by one, 1.9-3.4 s so)."""
-    missing = (meta or {}).get("missing") or []
-    write_atomic(out / "gradebook.csv", gradebook_csv(results, [m for m in missing if isinstance(m, str)]))
+    a batch the cores have nothing else to do (400 students: 5.3-6.7 s one by one, 1.9-3.4 s so).
+    No level below ``out`` is followed if it is a link (grader.batch.store.output_folder)."""
+    missing = [m for m in (meta or {}).get("missing") or [] if isinstance(m, str)]
+    with output_folder(out):
+        write_atomic(out / "gradebook.csv", gradebook_csv(results, missing))
 
-    def export(sid: str) -> None:
-        write_json(out / "gradescope" / stems[sid] / "results.json", gradescope_result(results[sid]))
-    with ThreadPoolExecutor(max_workers=8, thread_name_prefix="gradescope-export") as writers:
-        list(writers.map(export, results))      # list(): the first error is raised here
+        def export(sid: str) -> None:
+            write_json(out / "gradescope" / stems[sid] / "results.json", gradescope_result(results[sid]))
+        with ThreadPoolExecutor(max_workers=8, thread_name_prefix="gradescope-export") as writers:
+            list(writers.map(export, results))      # list(): the first error is raised here

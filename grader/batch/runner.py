@@ -26,7 +26,6 @@ import argparse
 import dataclasses
 import math
 import os
-import shutil
 import signal
 import sys
 import time
@@ -45,7 +44,17 @@ from grader.batch.intake import ClassList, IntakeError, IntakeOptions, read_clas
 from grader.batch.late_apply import settle_late, with_late_section
 from grader.batch.names import shown, student_stem
 from grader.batch.progress import Progress
-from grader.batch.store import OutputBusy, exclusive, folder_seed, read_json, write_atomic, write_json
+from grader.batch.store import (
+    OutputBusy,
+    entries,
+    exclusive,
+    folder_seed,
+    move,
+    read_json,
+    write_atomic,
+    write_json,
+)
+from grader.batch.stored import well_formed
 from grader.batch.submissions import Student, Submission, pack, read_submission
 from grader.batch.summary import write_summary
 from grader.result_size import bound_html, bound_result
@@ -364,7 +373,7 @@ class _Run:
         results = {}
         for student in self.students:
             stored = read_json(self.out / f"{self.stems[student.id]}.json")
-            if stored is not None and self._current(stored):
+            if well_formed(stored) and self._current(stored):  # a malformed one waits for its regrade
                 results[student.id] = stored
             else:
                 self._supersede(self.stems[student.id])
@@ -404,26 +413,17 @@ class _Run:
 
     def _supersede(self, stem: str) -> None:
         """Move a student's files from an older grading (or a half-written pair) to ``superseded/``, so
-        the output folder only ever shows the current grading; nothing is deleted."""
+        the output folder only ever shows the current grading; nothing is deleted but an older copy in
+        ``superseded/``. No link under the output folder is followed (grader.batch.store.move)."""
         for name in (f"{stem}.json", f"{stem}.html", f"gradescope/{stem}"):
-            old = self.out / name
-            if old.exists():
-                target = self.out / "superseded" / name
-                target.parent.mkdir(parents=True, exist_ok=True)
-                if target.is_dir():
-                    shutil.rmtree(target)
-                os.replace(old, target)
+            move(self.out / name, self.out / "superseded" / name)
 
     def _prune_gradescope(self, current: set[str]) -> None:
         """Move Gradescope exports of students with no current result out of ``gradescope/``."""
         folder = self.out / "gradescope"
-        for entry in sorted(folder.iterdir()) if folder.is_dir() else []:
-            if entry.is_dir() and entry.name not in current:
-                target = self.out / "superseded" / "gradescope" / entry.name
-                target.parent.mkdir(parents=True, exist_ok=True)
-                if target.is_dir():
-                    shutil.rmtree(target)
-                os.replace(entry, target)
+        for name, is_folder in entries(folder):
+            if is_folder and name not in current:
+                move(folder / name, self.out / "superseded" / "gradescope" / name)
 
     def _current(self, stored: dict) -> bool:
         """True if a stored result was graded with this run's week, seed, grader and --hidden. An older

@@ -17,6 +17,7 @@ from jinja2 import Environment
 
 from grader.batch.exports import check_ids, class_max_score
 from grader.batch.store import write_atomic
+from grader.batch.stored import well_formed
 from grader.report.html import STATIC_PAGE_CSP, page_text, run_anchor
 from grader.report.svg import histogram_svg, pass_rate_svg
 
@@ -156,7 +157,9 @@ _env = Environment(autoescape=True, finalize=page_text)
 
 
 def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) -> str:
-    """The page's HTML; ``meta`` gives week, seed, hidden, grader and ``incomplete`` (students not done)."""
+    """The page's HTML; ``meta`` gives week, seed, hidden, grader and ``incomplete`` (students not done).
+    A result grader.batch.stored finds malformed is left out (the runner regrades it), never read."""
+    results = {sid: r for sid, r in results.items() if well_formed(r)}
     max_score = class_max_score(results)
     graded = graded_scores(results)
     stats = check_stats(results)
