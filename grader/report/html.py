@@ -26,6 +26,7 @@ import jinja2
 from markupsafe import Markup
 
 from grader.report import svg
+from grader.report.loader import PrecompiledLoader
 from grader.report.signal_plots import declared_plots
 from grader.untrusted import printable
 from simiam import safe_write
@@ -65,11 +66,9 @@ def page_text(value: Any) -> Any:
 @functools.lru_cache(maxsize=1)
 def _env() -> jinja2.Environment:
     """The report's environment, built once per process: its templates compile on first use and stay
-    compiled (36 ms a report otherwise); a fresh process takes them precompiled (grader.report.precompiled)
+    compiled (36 ms a report otherwise); a fresh process takes them precompiled (grader.report.loader)
     where they are up to date. Nothing in it depends on a result: every value reaches the
     templates as a render argument, still autoescaped and passed through `page_text`."""
-    from grader.report.precompiled import PrecompiledLoader
-
     env = jinja2.Environment(loader=PrecompiledLoader("grader.report", "templates"), autoescape=True,
                              undefined=jinja2.ChainableUndefined, trim_blocks=True, lstrip_blocks=True,
                              finalize=page_text)
