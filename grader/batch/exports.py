@@ -45,12 +45,13 @@ def safe_cell(value: object) -> object:
 
 
 def gradebook_csv(results: dict[str, dict]) -> str:
-    """One row per student: id, one column of points per check, total, max, status, message."""
+    """One row per student: id, one column of points per check, total, max, status, message, and the
+    grader version that graded it (the batch's one version string)."""
     ids = check_ids(results)
     fallback_max = class_max_score(results)
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(["student", *ids, "total", "max", "status", "message"])
+    writer.writerow(["student", *ids, "total", "max", "status", "message", "grader"])
     for sid in sorted(results):
         result = results[sid]
         points = {c.get("id"): c.get("points") for c in result.get("checks") or [] if isinstance(c, dict)}
@@ -58,7 +59,8 @@ def gradebook_csv(results: dict[str, dict]) -> str:
         if not isinstance(max_score, (int, float)):
             max_score = fallback_max
         row = [sid, *[_number(points.get(cid)) for cid in ids], _number(result.get("score", 0.0)),
-               _number(max_score), result.get("status", ""), _one_line(result.get("message", ""))]
+               _number(max_score), result.get("status", ""), _one_line(result.get("message", "")),
+               _one_line(result.get("grader_version", ""), 100)]
         writer.writerow([safe_cell(cell) for cell in row])
     return buffer.getvalue()
 

@@ -34,6 +34,7 @@ td.msg{white-space:pre-wrap;overflow-wrap:anywhere}</style></head><body>
 {% for c in checks %}<tr><td>{{ c.id }}</td><td>{{ c.name }}</td><td>{{ c.status }}</td>
 <td>{{ c.points }} / {{ c.max_points }}</td><td class="msg">{{ c.message }}</td></tr>
 {% endfor %}</table>{% endif %}
+<p>Graded with grader <code>{{ grader }}</code>, seed <code>{{ seed }}</code>.</p>
 </body></html>
 """
 
@@ -48,4 +49,5 @@ def fallback_page(student_id: str, result: dict) -> str:
     return _env.from_string(_TEMPLATE).render(
         csp=STATIC_PAGE_CSP, student=student_id, week=str(result.get("week")), status=status,
         score=str(result.get("score")), max_score=str(result.get("max_score")),
-        message=str(result.get("message") or ""), advice=_ADVICE.get(status, ""), checks=checks)
+        message=str(result.get("message") or ""), advice=_ADVICE.get(status, ""), checks=checks,
+        grader=str(result.get("grader_version") or ""), seed=str(result.get("seed")))

@@ -40,8 +40,9 @@ from grader.batch.executors import DaskExecutor, ExecutorError, LocalExecutor
 from grader.batch.exports import write_exports
 from grader.batch.fallback_page import fallback_page
 from grader.batch.names import shown, student_stem
+from grader.batch.pages import REPLAYS, replay_pages, write_assets, write_student_pages
 from grader.batch.progress import Progress
-from grader.batch.store import OutputBusy, exclusive, folder_seed, read_json, write_atomic, write_json
+from grader.batch.store import OutputBusy, exclusive, folder_seed, read_json, write_json
 from grader.batch.submissions import Student, Submission, discover, pack, read_submission
 from grader.batch.summary import write_summary
 from grader.result_size import bound_html, bound_result
@@ -165,6 +166,7 @@ def run_batch(options: BatchOptions, grade_fn: Callable[[dict], dict] | str | No
     try:
         with exclusive(out):
             options = dataclasses.replace(options, seed=folder_seed(out, options.seed))
+            write_assets(out)
             run = _Run(options, out, students, stems, stream)
             try:
                 executor.run(grade_fn or "grader.batch.task:grade_task", run.plan(), run.finish)
@@ -267,6 +269,7 @@ class _Run:
         submission, key = self.pending.pop(sid)
         result, html = self._settle(task, outcome)
         result["submission"] = task["display"]
+        result["grader_version"] = self.grader      # the batch's one version string (grader.batch.task)
         result["batch"] = {"student": sid, "cache_key": key, "submission_sha256": submission.sha256,
                            "grader": self.grader, "root": submission.root}
         if outcome.get("traceback"):
@@ -279,7 +282,8 @@ class _Run:
         # HTML and JSON never come from two different gradings.
         (self.out / f"{stem}.json").unlink(missing_ok=True)
         html = bound_html(html) if isinstance(html, str) else None
-        write_atomic(self.out / f"{stem}.html", html or fallback_page(shown(sid), result))
+        replays = replay_pages(outcome.get("value")) if html else {}
+        write_student_pages(self.out, stem, html or fallback_page(shown(sid), result), replays)
         write_json(self.out / f"{stem}.json", result)
         status = result["status"]
         self.record[sid] = {"status": status, "cached": False, "seconds": result["timing"]["batch_seconds"],
@@ -341,7 +345,7 @@ class _Run:
     def _supersede(self, stem: str) -> None:
         """Move a student's files from an older grading (or a half-written pair) to ``superseded/``, so
         the output folder only ever shows the current grading; nothing is deleted."""
-        for name in (f"{stem}.json", f"{stem}.html", f"gradescope/{stem}"):
+        for name in (f"{stem}.json", f"{stem}.html", f"gradescope/{stem}", f"{REPLAYS}/{stem}"):
             old = self.out / name
             if old.exists():
                 target = self.out / "superseded" / name
