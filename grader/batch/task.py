@@ -77,7 +77,8 @@ def _with_report(result: dict, traces: dict[str, dict], began: float, stem: str)
     try:
         from grader.report.html import render_report_pages
     except ImportError:  # a grader installed without its report package: the batch writes a plain page
-        html, replays = None, {}
+        html: str | None = None
+        replays: dict[str, str] = {}
     else:
         html, replays = render_report_pages(result, traces, folder=replay_folder(stem),
                                             assets=ASSETS_FROM_REPLAY)
