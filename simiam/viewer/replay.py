@@ -15,11 +15,13 @@ import hashlib
 import itertools
 import json
 import math
+import zlib
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
 import jinja2
+from jinja2.utils import htmlsafe_json_dumps
 from markupsafe import Markup
 
 from simiam import safe_write
@@ -282,6 +284,15 @@ def shared_assets() -> dict[str, str]:
     return {name: _asset(f"static/{name}") for name in SHARED_ASSETS}
 
 
+def deflated_data(packed: dict) -> str:
+    """The packed trace as a replay page with shared assets carries it: the JSON the self-contained page
+    embeds (the same text, `tojson`'s), deflated (zlib) and base64-encoded, about a quarter of its size;
+    the page's script unpacks it with the browser's DecompressionStream. Base64 holds no `<`, `&` or quote:
+    nothing in it can end or change the element it is in."""
+    text = str(htmlsafe_json_dumps(packed, **_env().policies["json.dumps_kwargs"]))
+    return base64.b64encode(zlib.compress(text.encode("ascii"), 6)).decode("ascii")
+
+
 def _encodable(value: Any) -> Any:
     if isinstance(value, str) and not isinstance(value, Markup):
         return value.encode("utf-8", "backslashreplace").decode("utf-8")
@@ -321,8 +332,9 @@ def render_replay(trace: dict, title: str | None = None, max_rows: int | None = 
 
     `max_rows` thins a long run to every k-th row (the grader's report embeds several runs); by default
     every row is kept. `assets` (a relative URL of a folder holding `shared_assets()`) makes the page load
-    its script and styles from there instead of carrying them: ~40 KB less a page, for pages written
-    together (a batch). Raises TraceFormatError with a plain message if `trace` is not a Seam-2 trace.
+    its script and styles from there instead of carrying them (~40 KB less a page, for pages written
+    together: a batch) and carry its data deflated (`deflated_data`). Raises TraceFormatError with a
+    plain message if `trace` is not a Seam-2 trace.
     """
     stride = 1
     if max_rows is not None and isinstance(trace, dict):
@@ -344,7 +356,7 @@ def render_replay(trace: dict, title: str | None = None, max_rows: int | None = 
     subtitle = " · ".join(b for b in bits if b)
     if assets is not None:
         return _template().render(title=title, subtitle=subtitle, csp=shared_policy(), assets=assets,
-                                  data=packed)
+                                  data=packed, deflated=deflated_data(packed))
     return _template().render(title=title, subtitle=subtitle, csp=content_security_policy(),
                               css=Markup(_asset("static/replay.css")), script=Markup(_script()), data=packed)
 

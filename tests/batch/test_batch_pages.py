@@ -12,12 +12,14 @@
 
 from __future__ import annotations
 
+import base64
 import csv
 import html
 import json
 import re
 import shutil
 import sys
+import zlib
 from pathlib import Path
 
 import pytest
@@ -146,8 +148,9 @@ def test_a_replay_page_holds_the_rows_the_self_contained_report_embeds() -> None
     inline = html.unescape(render_report(result, traces))
     embedded = [json.loads(d) for d in re.findall(r'id="simiam-data">(.*?)</script>', inline, re.S)]
     page, replays = render_report_pages(result, traces, folder="replays/s", assets="../../assets")
-    own = [json.loads(re.search(r'id="simiam-data">(.*?)</script>', replays[name], re.S)[1])
-           for name in sorted(replays)]
+    own = [json.loads(zlib.decompress(base64.b64decode(re.search(
+               r'<script type="application/x-simiam-deflate" id="simiam-data">(.*?)</script>',
+               replays[name], re.S)[1]))) for name in sorted(replays)]
     assert len(embedded) == len(own) == 2 and embedded == own
     linked = sorted(re.findall(r'href="(replays/s/[^"]+)"', page))
     assert linked == [f"replays/s/{name}" for name in sorted(replays)]

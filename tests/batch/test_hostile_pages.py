@@ -103,8 +103,8 @@ def injected(page) -> list[str]:
             handlers: [...document.querySelectorAll('*')].flatMap(e => [...e.attributes])
                 .filter(a => a.name.startsWith('on')).map(a => a.name + '=' + a.value),
             scripts: [...document.scripts].map(s => s.type || 'js')})""")
-        replay = frame.evaluate("() => !!document.getElementById('simiam-data')")
-        expected_scripts = ["application/json", "js"] if replay else []
+        replay = frame.evaluate("() => document.getElementById('simiam-data')?.type")
+        expected_scripts = [replay, "js"] if replay else []   # the data (JSON or deflated), the script
         if state["pwned"] is not None or state["alerts"] or state["imgs"] or state["handlers"] or \
                 state["scripts"] != expected_scripts:
             found.append(f"{frame.url[:60]}: {state}")
