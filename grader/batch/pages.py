@@ -19,6 +19,7 @@ import contextlib
 import errno
 import os
 import re
+import stat
 from pathlib import Path
 from urllib.parse import quote
 
@@ -79,7 +80,10 @@ def _clear(out: Path, stem: str) -> None:
     following a link (a link there is refused) and unlinking by name (which never follows one)."""
     fds: list[int] = []
     try:
-        fd = os.open(out, os.O_RDONLY | os.O_DIRECTORY)
+        try:
+            fd = os.open(out, os.O_RDONLY | os.O_DIRECTORY)
+        except FileNotFoundError:
+            return
         fds.append(fd)
         path = out
         for part in (REPLAYS, stem):
@@ -88,8 +92,8 @@ def _clear(out: Path, stem: str) -> None:
                 fd = os.open(part, os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW, dir_fd=fd)
             except FileNotFoundError:
                 return
-            except OSError as exc:
-                if exc.errno == errno.ELOOP:
+            except OSError as exc:   # a link: ELOOP, or ENOTDIR with O_DIRECTORY
+                if exc.errno == errno.ELOOP or stat.S_ISLNK(os.lstat(part, dir_fd=fd).st_mode):
                     raise safe_write.LinkRefused(path) from None
                 raise
             fds.append(fd)

@@ -7,7 +7,9 @@
   under replays/<stem>/, which loads the replay's script and styles from the batch's assets/ and plays
   in Chromium under its Content-Security-Policy; a replay page pointing elsewhere is caught;
 - the replay page holds the rows the self-contained report embeds for that run (the same run plays), and
-  a page whose plots would exceed the budget is drawn with fewer points until it fits.
+  a page whose plots would exceed the budget is drawn with fewer points until it fits;
+- a regrade leaves only its own replay pages, and a link planted at a student's replay folder is refused
+  (a clear that follows it, tests/data/pages_wrong/clear_by_path.py, is caught).
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from __future__ import annotations
 import base64
 import csv
 import html
+import importlib.util
 import json
 import re
 import shutil
@@ -171,3 +174,31 @@ def test_a_page_over_its_budget_is_drawn_with_fewer_points(monkeypatch) -> None:
     tight, same = render_report_pages(result, traces, folder="r", assets="a")
     assert len(tight.encode()) < len(roomy.encode()) and same == replays
     assert tight.count("<svg") == roomy.count("<svg") and tight.count("replay-link") == 3
+
+
+def test_a_regrade_leaves_only_its_own_replay_pages_and_writes_through_no_link(tmp_path) -> None:
+    from grader.batch.pages import replay_pages, write_student_pages
+    from simiam.safe_write import LinkRefused
+
+    out = tmp_path / "out"
+    write_student_pages(out, "ann", "<p>first</p>", {"a.html": "A", "b.html": "B"})
+    write_student_pages(out, "ann", "<p>second</p>", {"a.html": "A2"})
+    assert sorted(p.name for p in (out / "replays" / "ann").iterdir()) == ["a.html"]
+    assert (out / "ann.html").read_text() == "<p>second</p>"
+    # only plain names from an outcome: nothing hidden, no folder, no parent
+    pages = replay_pages({"replays": {"../x.html": "X", ".h.html": "H", "d/e.html": "E", "ok.html": "OK",
+                                      "n.html": 3}})
+    assert pages == {"ok.html": "OK"}
+    # a link planted where a student's replay folder goes: refused, and what it points to is untouched
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (elsewhere / "keep.html").write_text("keep")
+    (out / "replays" / "bob").symlink_to(elsewhere)
+    with pytest.raises(LinkRefused):
+        write_student_pages(out, "bob", "<p>bob</p>", {"a.html": "A"})
+    assert [p.name for p in elsewhere.iterdir()] == ["keep.html"]
+    spec = importlib.util.spec_from_file_location("clear_by_path", WRONG / "clear_by_path.py")
+    wrong = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(wrong)
+    wrong.clear(out, "bob")                          # the check above catches a clear that follows it
+    assert [p.name for p in elsewhere.iterdir()] == []
