@@ -129,7 +129,7 @@ svg.plot{display:block;max-width:100%;height:auto}
 .bar{display:inline-block;height:10px;background:#3b7dd8;vertical-align:middle;margin-right:4px}
 .graded{color:#176b2c}.invalid,.crashed,.timeout,.held{color:#a11}
 col.student{width:12em}col.status{width:5.5em}col.score{width:7em}col.replays{width:30%}
-col.kind{width:5.5em}col.max{width:3.5em}col.rate{width:8.5em}col.mean{width:4.5em}col.errors{width:4em}
+col.kind{width:5.5em}col.max{width:3.5em}col.rate{width:8.5em}col.mean{width:4.5em}col.errors{width:5em}
 .runs{display:inline-flex;flex-wrap:wrap;gap:2px;margin:0 6px 2px 0;vertical-align:top}
 a.run{display:inline-block;min-width:1.6em;padding:0 3px;border-radius:3px;background:#e3edf9;color:#1f4fd1;
 text-align:center;text-decoration:none;font-size:.8em;line-height:1.6}
