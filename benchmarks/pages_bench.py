@@ -108,9 +108,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--week", type=int, default=5)
     parser.add_argument("--n", type=int, default=400, help="students in the class")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--rounds", type=int, default=1,
+                        help="build each layout this many times, in the order ABBA... (on a busy machine)")
     args = parser.parse_args(argv)
-    if args.n < 1 or args.jobs < 1 or args.n > 1000:
-        parser.error("--n must be 1..1000 and --jobs at least 1")
+    if args.n < 1 or args.jobs < 1 or args.n > 1000 or args.rounds < 1:
+        parser.error("--n must be 1..1000, --jobs and --rounds at least 1")
     print(machine_line("none (the grading is copied, not run)"), flush=True)
     print(prepare_bytecode(), flush=True)
     with tempfile.TemporaryDirectory(prefix="simiam-pages-bench-") as tmp:
@@ -121,15 +123,20 @@ def main(argv: list[str] | None = None) -> int:
         print(f"graded the week {args.week} solution and stub once (hidden checks): "
               f"{time.monotonic() - began:.1f} s", flush=True)
         os.environ[GRADINGS] = str(gradings)
-        rows = {}
-        for name, fn in (("self-contained (baseline)", "pages_bench:self_contained_pages"),
-                         ("shared assets", "pages_bench:shared_pages")):
-            rows[name] = build(args.week, args.n, args.jobs, fn, Path(tmp) / name.split()[0])
-    base = rows["self-contained (baseline)"]
+        layouts = (("self-contained (baseline)", "pages_bench:self_contained_pages"),
+                   ("shared assets", "pages_bench:shared_pages"))
+        rows = []
+        for k in range(args.rounds):    # ABBA...: each layout as often first as second under a drifting load
+            for name, fn in layouts if k % 2 == 0 else layouts[::-1]:
+                row = build(args.week, args.n, args.jobs, fn, Path(tmp) / f"{k}-{name.split()[0]}")
+                rows.append((k, name, row))
+                shutil.rmtree(Path(tmp) / f"{k}-{name.split()[0]}")
+    bases = {k: row for k, name, row in rows if name == layouts[0][0]}   # each round's own baseline
     print(f"week {args.week}, {args.n} students, --jobs {args.jobs}")
     print(f"{'layout':<26} {'total MB':>9} {'x base':>6} {'files':>6} {'page KB mean':>12} {'max':>6} "
           f"{'replays MB':>10} {'summary KB':>10} {'pages/s':>8} {'x base':>6} {'CPU s/student':>13}")
-    for name, row in rows.items():
+    for k, name, row in rows:
+        base = bases[k]
         missing = "" if row["graded"] == args.n else f"  (only {row['graded']} written)"
         print(f"{name:<26} {row['total'] / 1e6:>9.1f} {ratio(row['total'], base['total']):>6.2f} "
               f"{row['files']:>6} {row['page_mean'] / 1e3:>12.1f} {row['page_max'] / 1e3:>6.1f} "
@@ -139,8 +146,8 @@ def main(argv: list[str] | None = None) -> int:
     print("total MB: everything in the output folder (pages, replay pages, assets, results, class files); "
           "page KB: a student's report; replays MB: the replay pages (replays/); pages/s: students whose "
           "pages were written per wall second (the grading copied, so this is the pages' cost with the "
-          "batch's own writing); x base: the baseline's figure divided by this one's for speed, this "
-          "one's divided by the baseline's for size")
+          "batch's own writing); x base: against the baseline built in the same round (its figure divided "
+          "by this one's for speed, this one's divided by the baseline's for size)")
     print(load_after_line())
     return 0
 
