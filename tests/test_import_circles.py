@@ -26,12 +26,6 @@ ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("simiam", "grader", "instructor_tools")
 WRONG = ROOT / "tests" / "data" / "import_circle"  # a package with a circle (its README says which)
 
-# Circles that issue 33 removes in the changes that rewrite these very files (the report's loader and its
-# environment in one place; the leftovers sweep taking what it needs as arguments). Tolerated here only
-# until those changes are merged: delete this constant then, and the test fails on any circle at all.
-CIRCLES_BEING_REMOVED_ELSEWHERE: tuple[frozenset[str], ...] = (
-    frozenset({"grader.report.html", "grader.report.precompiled"}),
-)
 
 
 @dataclass(frozen=True)
@@ -161,7 +155,7 @@ def report(found: list[frozenset[str]], imports: dict[str, list[Edge]], files: d
 
 def test_no_import_circle() -> None:
     imports, files = graph(ROOT, PACKAGES)
-    found = [part for part in circles(imports) if part not in CIRCLES_BEING_REMOVED_ELSEWHERE]
+    found = circles(imports)
     assert found == [], report(found, imports, files, ROOT)
 
 

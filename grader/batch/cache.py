@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-from importlib import metadata
 from pathlib import Path
 
 from grader.batch.stored import well_formed
@@ -27,14 +26,16 @@ FINAL_STATUSES = ("graded", "invalid")
 
 
 def _package_version() -> str:
-    try:
-        return metadata.version("simiam")
-    except metadata.PackageNotFoundError:
-        return "0+unknown"
+    """The version a single grading states too (simiam.__version__, which the distribution is built with)."""
+    from grader.result import package_version
+
+    return package_version()
 
 
 def grader_fingerprint() -> str:
-    """``<version>+<12 hex>``: the package version and a hash of every file that can change a grade.
+    """``<version>+<12 hex>``: the package version (grader.result.package_version, as in a single
+    grading's version) and a hash of every file that can change a grade. Every file of a batch states
+    this one string as its grader version.
 
     Computed afresh on each call (about 20 ms), never cached: a long-lived process (a notebook running
     several batches) must see a check fixed in between.

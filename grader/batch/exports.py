@@ -46,14 +46,15 @@ def safe_cell(value: object) -> object:
 
 def gradebook_csv(results: dict[str, dict], missing: list[str] | tuple[str, ...] = ()) -> str:
     """One row per student: id, one column of points per check, total (after any late penalty), max,
-    status, message, late_penalty and score_before_penalty (blank without a late policy); a ``held``
-    student's total is blank, and each roster student in ``missing`` has a row with a blank total."""
+    status, message, late_penalty and score_before_penalty (blank without a late policy), and the grader
+    version that graded it (the batch's one version string); a ``held`` student's total is blank, and
+    each roster student in ``missing`` has a row with a blank total."""
     ids = check_ids(results)
     fallback_max = class_max_score(results)
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(["student", *ids, "total", "max", "status", "message", "late_penalty",
-                     "score_before_penalty"])
+                     "score_before_penalty", "grader"])
     for sid in sorted(results):
         result = results[sid]
         points = {c.get("id"): c.get("points") for c in result.get("checks") or [] if isinstance(c, dict)}
@@ -63,11 +64,12 @@ def gradebook_csv(results: dict[str, dict], missing: list[str] | tuple[str, ...]
         late = lt if isinstance(lt := result.get("late"), dict) else {}
         row = [sid, *[_number(points.get(cid)) for cid in ids], _number(result.get("score", 0.0)),
                _number(max_score), result.get("status", ""), _one_line(result.get("message", "")),
-               _number(late.get("penalty_points")), _number(late.get("score_before"))]
+               _number(late.get("penalty_points")), _number(late.get("score_before")),
+               _one_line(result.get("grader_version", ""), 100)]
         writer.writerow([safe_cell(cell) for cell in row])
     for sid in sorted(set(missing) - set(results)):
         writer.writerow([safe_cell(c) for c in [sid, *[""] * len(ids), "", _number(fallback_max), "missing",
-                                                 "on the roster, no submission", "", ""]])
+                                                 "on the roster, no submission", "", "", ""]])
     return buffer.getvalue()
 
 

@@ -43,6 +43,7 @@ from grader.batch.identity import Identity
 from grader.batch.intake import ClassList, IntakeError, IntakeOptions, read_class
 from grader.batch.late_apply import settle_late, with_late_section
 from grader.batch.names import shown, student_stem
+from grader.batch.pages import REPLAYS, replay_pages, write_assets, write_student_pages
 from grader.batch.progress import Progress
 from grader.batch.store import (
     OutputBusy,
@@ -185,6 +186,7 @@ def run_batch(options: BatchOptions, grade_fn: Callable[[dict], dict] | str | No
     try:
         with exclusive(out):
             options = dataclasses.replace(options, seed=folder_seed(out, options.seed))
+            write_assets(out)
             run = _Run(options, out, klass, stems, stream)
             try:
                 executor.run(grade_fn or "grader.batch.task:grade_task", run.plan(), run.finish)
@@ -327,6 +329,7 @@ class _Run:
         if submission.notices and not result.get("notices"):   # not graded: what the intake noticed
             result["notices"] = list(submission.notices)
         identity = self._identity(submission.student)
+        result["grader_version"] = self.grader      # the batch's one version string (grader.batch.task)
         result["batch"] = {"student": sid, "cache_key": key, "submission_sha256": submission.sha256,
                            "grader": self.grader, "root": submission.root, "identity": identity.to_json()}
         if result.get("status") == "held":
@@ -344,7 +347,8 @@ class _Run:
         (self.out / f"{stem}.json").unlink(missing_ok=True)
         html = bound_html(html) if isinstance(html, str) else None
         page = html or fallback_page(shown(sid), result)
-        write_atomic(self.out / f"{stem}.html", with_late_section(page, result.get("late")))
+        replays = replay_pages(outcome.get("value")) if html else {}
+        write_student_pages(self.out, stem, with_late_section(page, result.get("late")), replays)
         write_json(self.out / f"{stem}.json", result)
         status = result["status"]
         self.record[sid] = {"status": status, "cached": False, "seconds": result["timing"]["batch_seconds"],
@@ -415,7 +419,7 @@ class _Run:
         """Move a student's files from an older grading (or a half-written pair) to ``superseded/``, so
         the output folder only ever shows the current grading; nothing is deleted but an older copy in
         ``superseded/``. No link under the output folder is followed (grader.batch.store.move)."""
-        for name in (f"{stem}.json", f"{stem}.html", f"gradescope/{stem}"):
+        for name in (f"{stem}.json", f"{stem}.html", f"gradescope/{stem}", f"{REPLAYS}/{stem}"):
             move(self.out / name, self.out / "superseded" / name)
 
     def _prune_gradescope(self, current: set[str]) -> None:

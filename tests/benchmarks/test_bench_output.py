@@ -60,6 +60,16 @@ def test_grade_bench_prints_machine_baseline_and_ratios():
     assert len(_ratios(out, "baseline CPU")) == 2  # the fresh process and the warm grade_submission
 
 
+def test_pages_bench_prints_machine_sizes_and_the_same_run_baseline():
+    out = _script("benchmarks/pages_bench.py", "--week", "1", "--n", "2", "--jobs", "1")
+    assert MACHINE.search(out) and LOAD_AFTER.search(out)
+    rows = dict((name, (float(size), float(x))) for name, size, x in re.findall(
+        r"^(self-contained \(baseline\)|shared assets) +([0-9.]+) +([0-9.]+) ", out, re.M))
+    assert set(rows) == {"self-contained (baseline)", "shared assets"}, out
+    assert rows["self-contained (baseline)"][1] == 1.0 and 0 < rows["shared assets"][1] < 1.0
+    assert re.search(r"^shared assets .* [0-9.]+ +[0-9.]+ +[0-9.]+$", out, re.M)  # pages/s, x base, CPU
+
+
 def test_batch_bench_prints_machine_baseline_and_ratios():
     out = _script("benchmarks/batch_bench.py", "--weeks", "1", "--jobs", "1", "--n", "1")
     assert MACHINE.search(out) and LOAD_AFTER.search(out)

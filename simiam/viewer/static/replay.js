@@ -5,7 +5,29 @@
 (function () {
   "use strict";
 
-  var D = JSON.parse(document.getElementById("simiam-data").textContent);
+  // The run's data: JSON as it is, or (a batch's replay pages) deflated and base64-encoded, unpacked by the
+  // browser's own DecompressionStream before the page starts.
+  var DATA = document.getElementById("simiam-data");
+  if (DATA.type === "application/json") {
+    start(JSON.parse(DATA.textContent));
+  } else {
+    unpacked(DATA.textContent).then(function (text) { start(JSON.parse(text)); }, function (err) {
+      var line = document.getElementById("status");
+      if (line) { line.textContent = "This browser could not unpack the replay (" + err + "): it needs " +
+                  "Chrome 80, Firefox 113, Safari 16.4 or later."; }
+    });
+  }
+
+  function unpacked(text) {
+    try {
+      var bytes = Uint8Array.from(atob(text.trim()), function (c) { return c.charCodeAt(0); });
+      return new Response(new Blob([bytes]).stream().pipeThrough(new DecompressionStream("deflate"))).text();
+    } catch (err) {
+      return Promise.reject(err);
+    }
+  }
+
+  function start(D) {
   var S = D.steps;
   var SIGS = D.signals || [], SD = D.signal_data || {};   // the run's declared debug signals, by name
   var N = S.t.length;
@@ -743,4 +765,5 @@
   home();
   render();
   if (!window.ResizeObserver) { document.body.setAttribute("data-ready", "1"); }
+  }
 })();
