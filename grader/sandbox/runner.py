@@ -30,10 +30,11 @@ from collections.abc import Callable
 
 from grader.inside.answer_bounds import MAX_ANSWER_BYTES, OutOfBounds, check_message
 from grader.inside.protocol import MAX_MESSAGE, LineReader, ProtocolError, decode, encode_request
-from grader.sandbox.errors import StudentTimeout, WorkerDied
+from grader.sandbox.errors import MachineStalled, StudentTimeout, WorkerDied
 from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
 from grader.sandbox.leftovers import remove_ipc_of
 from grader.sandbox.output import CappedOutput
+from grader.sandbox.worker_clock import MACHINE, STUDENT, CallClock
 
 DUMP_WAIT_SECONDS = 0.25   # how long a timed-out worker gets to write its stack dump before the kill
 DUMP_IDLE_SECONDS = 0.02
@@ -41,6 +42,7 @@ DUMP_IDLE_SECONDS = 0.02
 # worker may wait well over DUMP_WAIT_SECONDS for the CPU, and the signal stays pending until it runs.
 DUMP_PENDING_SECONDS = 2.0
 MAX_DUMP_BYTES = 64 * 1024
+STALL_SECONDS = 30.0  # default wall bound of one wait (Limits.stall_seconds): past it, a stall
 
 # getattr: Windows has no SIGXCPU, SIGXFSZ or SIGKILL (this module is imported there too).
 _SIGNAL_MEANING: dict[int, str] = {
@@ -88,13 +90,18 @@ class WorkerProcess:
         self.dead: str | None = None
         self.ready: dict = {}        # the worker's first message, sent before any student code ran
         self.stack_dump = b""        # what the worker dumped when its last call timed out (untrusted)
+        self.stall_seconds = STALL_SECONDS
+        self.last_clock: CallClock | None = None  # the clock of the last wait (grader.sandbox.worker_clock)
+        self._host_pid: int | None = None
 
     # ---- messages ----------------------------------------------------------------------------------
     def wait_ready(self, timeout: float) -> dict:
-        """The worker's first message (id 0) once its bootstrap is done."""
-        message = self._receive(0, time.monotonic() + timeout, "start")
+        """The worker's first message (id 0) once its bootstrap is done, within `timeout` seconds of the
+        starting processes' own time (worker_clock: a loaded machine only makes the start slower)."""
+        message = self._receive(0, self._clock(self.proc.pid, timeout), "start")
         value = message.get("value")
         self.ready = value if isinstance(value, dict) else {}
+        self._host_pid = self._worker_pid()
         return message
 
     def request(self, op: str, fields: dict, timeout: float) -> dict:
@@ -120,10 +127,15 @@ class WorkerProcess:
         return rid
 
     def receive(self, rid: int, timeout: float, op: str) -> dict:
-        """The answer with id `rid`, within `timeout` seconds from now (see `_receive`)."""
+        """The answer with id `rid`, within `timeout` seconds of the worker's own time from now: its CPU
+        time and sleep, never time the machine held it up (grader.sandbox.worker_clock; see `_receive`)."""
         if self.dead:
             raise WorkerDied(self.dead)
-        return self._receive(rid, time.monotonic() + timeout, op)
+        return self._receive(rid, self._clock(self._host_pid, timeout), op)
+
+    def _clock(self, pid: int | None, timeout: float) -> CallClock:
+        self.last_clock = CallClock(pid, timeout, self.stall_seconds)
+        return self.last_clock
 
     def no_more_answers(self) -> None:
         """After the last answer of a `probe_many`: anything already read beyond it is an answer nobody
@@ -143,7 +155,7 @@ class WorkerProcess:
                 if not _wait(self._req_w, select.POLLOUT, 5.0):
                     self._die("it stopped reading requests")
 
-    def _receive(self, rid: int, deadline: float, op: str) -> dict:
+    def _receive(self, rid: int, clock: CallClock, op: str) -> dict:
         while True:
             try:
                 line = self._reader.pop_line()
@@ -160,13 +172,21 @@ class WorkerProcess:
                 if message.get("id") != rid or type(message.get("ok")) is not bool:
                     self._die("it sent an answer that does not match the question")
                 return message
-            left = deadline - time.monotonic()
+            left = clock.next_wait()
             if left <= 0:
-                if op != "start":
-                    self.stack_dump = self._dump_stack()
-                self.kill()
-                what = "the worker did not start" if op == "start" else "no answer"
-                raise StudentTimeout(f"{what} within the time limit")
+                verdict = clock.look()
+                if verdict == MACHINE:  # not the student's doing: no location, no timeout
+                    self.kill()
+                    raise MachineStalled(
+                        f"the machine held the worker up: {clock.wall:.1f} s passed while it ran "
+                        f"{clock.own:.2f} s of its {clock.limit:g} s")
+                if verdict == STUDENT:
+                    if op != "start":
+                        self.stack_dump = self._dump_stack()
+                    self.kill()
+                    what = "the worker did not start" if op == "start" else "no answer"
+                    raise StudentTimeout(f"{what} within the time limit")
+                continue
             data = self._read_answers(left)
             if data is None:
                 continue
