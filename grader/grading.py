@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from grader.checks import Check, Context, checks_for_week, grader_error, run_check
+from grader.earlier import SESSION_KEY
 from grader.result import CheckResult, loss_summary, submission_result
 from grader.result_size import bound_result
 from grader.sandbox.errors import MachineStalled, SandboxError
@@ -360,7 +361,8 @@ def _run_timed(check: Check, ctx: Context, problems: dict[str, list[str]],
                timing: dict[str, float], spoiled: list[str]) -> CheckResult:
     """Run one check, again while the machine stalls it (grader.under_load); its time into `timing`."""
     t0 = time.monotonic()
-    result, stalls = run_again_if_stalled(lambda: run_check(check, ctx, problems), ctx.session.budget)
+    result, stalls = run_again_if_stalled(lambda: run_check(check, ctx, problems), ctx.session.budget,
+                                          ctx.memo, keep=lambda key: key == SESSION_KEY)
     if stalls:
         spoiled.append(check.id)
     timing[check.id] = round(time.monotonic() - t0, 3)

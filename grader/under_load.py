@@ -11,7 +11,8 @@ such students for the instructor to grade again (grader.batch.runner). Nothing i
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, MutableMapping
+from typing import Any
 
 from grader.result import CheckResult
 from grader.sandbox.time_budget import TimeBudget
@@ -22,15 +23,21 @@ BLIND_NOTE = ("time limits were judged by the wall clock, three times the stated
               "cannot tell the worker's CPU time: on a very busy machine a timeout may not be your code's")
 
 
-def run_again_if_stalled(run: Callable[[], CheckResult], budget: TimeBudget) -> tuple[CheckResult, list[str]]:
+def run_again_if_stalled(run: Callable[[], CheckResult], budget: TimeBudget, memo: MutableMapping[Any, Any],
+                         keep: Callable[[Any], bool]) -> tuple[CheckResult, list[str]]:
     """`run()` a check; while a worker stalled during it, run it again (REDOS times at most). The result and
-    what the stalls of its last try said (empty: the verdict stands)."""
+    what the stalls of its last try said (empty: the verdict stands).
+
+    What a stalled try left in `memo` (the runs checks share, grader.checks.Context.memo) is dropped, but
+    for the keys `keep` names (an open session): no later try, and no other check, reads a stalled run."""
     for _ in range(REDOS + 1):
-        before = len(budget.stalls)
+        before, known = len(budget.stalls), set(memo)
         result = run()
         stalls = budget.stalls[before:]
         if not stalls:
             return result, []
+        for key in [k for k in memo if k not in known and not keep(k)]:
+            del memo[key]
     return spoiled(result, stalls), stalls
 
 

@@ -1,7 +1,7 @@
 """A machine under load, for the tests: busy processes on every core, and the grading's workers paused.
 
-    with Saturated(4):                       # four processes spinning at the grader's own priority
-        with Pauser(seconds=3.0, seed=1) as pauser:   # SIGSTOP the workers at random moments, SIGCONT 3 s later
+    with Saturated(4):                      # four processes spinning at the grader's own priority
+        with Pauser(seconds=3.0, seed=1) as pauser:  # SIGSTOP the workers at random moments, 3 s each
             result = grade_submission(...)
         assert pauser.pauses >= 2
 

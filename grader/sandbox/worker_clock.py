@@ -119,7 +119,8 @@ class CallClock:
 
     def __init__(self, pid: int | None, limit: float, stall_seconds: float) -> None:
         self.limit = limit
-        self.stall_seconds = max(stall_seconds, limit)
+        # never within reach of the limit itself (the looks read the own time up to LOOK_EVERY late)
+        self.stall_seconds = max(stall_seconds, 2 * limit + 1.0)
         self.began = self._at = time.monotonic()
         self.pid = pid
         self.blind = False

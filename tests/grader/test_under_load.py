@@ -1,0 +1,118 @@
+"""Same verdict under load (issue 34): graded while four busy processes saturate the cores and every worker
+of the grading is stopped for 3 s at random moments, several times per grading, each version's verdict is
+the snapshot's (tests/data/verdicts/seed2014.json, as tests/grader/test_checks_fail.py). Code stuck in one
+step (an endless loop, a loop of sleeps, a computation far too long) is still a timeout, within its bound.
+
+By default a representative subset (week 3's solution whole, week 6's on the check a pause once cost it,
+one kept wrong version); every solution, stub and kept wrong version of weeks 3-7 with
+
+    SIMIAM_LOAD_MATRIX=full python -m pytest tests/grader/test_under_load.py -n 0
+
+The kept wrong version of the limit checker (tests/data/load_wrong/wall_clock.py, the wall clock deciding)
+loses points under the same pauses: the comparison can fail.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import mistakes
+import pytest
+from machine_load import Pauser, Saturated
+from verdict_diff import differences
+from verdict_matrix import SNAPSHOT, versions
+
+from grader.grading import grade_submission
+from grader.sandbox import runner
+from grader.sandbox.limits import Limits
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
+from load_wrong.wall_clock import WallClock  # noqa: E402
+
+pytestmark = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="pauses need /proc")
+
+FULL = os.environ.get("SIMIAM_LOAD_MATRIX") == "full"
+VERDICTS = json.loads(SNAPSHOT.read_text())["verdicts"]
+PAUSE = 3.0
+ROOT = Path(__file__).resolve().parents[2]
+# label or label::check (that check alone, against its verdict in the snapshot)
+SUBSET = ["solutions/week3", "solutions/week6::week6.laps.left", "week3_gains_in_execute::week3.pid.memory"]
+EVERY = sorted(label for label, week in versions().items() if 3 <= week <= 7)
+
+
+@pytest.fixture(scope="module")
+def saturated() -> Iterator[Saturated]:
+    """Four processes spinning on the (two) cores for the whole module."""
+    with Saturated(4) as busy:
+        yield busy
+
+
+def folder_of(label: str, tmp_path: Path) -> tuple[Path, int]:
+    week = versions()[label]
+    if "/" in label:
+        return ROOT / label, week
+    return mistakes.build("wrong", label, tmp_path, week), week
+
+
+def grade_paused(label: str, tmp_path: Path, busy: Saturated, seed: int) -> tuple[dict, int]:
+    """Grade `label` (or `label::check`) as official grading does, under pauses; (result, pauses made)."""
+    name, _, check = label.partition("::")
+    folder, week = folder_of(name, tmp_path)
+    with Pauser(seconds=PAUSE, seed=seed, leave=busy.pids) as pauser:
+        result = grade_submission(week, folder, seed=2014, hidden=True, only=check or None)
+    return result, pauser.pauses
+
+
+@pytest.mark.parametrize("label", EVERY if FULL else SUBSET)
+def test_the_verdict_under_load_and_pauses_is_the_snapshots(label: str, tmp_path: Path, saturated) -> None:
+    began = time.monotonic()
+    result, pauses = grade_paused(label, tmp_path, saturated, seed=sum(map(ord, label)))
+    name, _, check = label.partition("::")
+    expected = {k: v for k, v in VERDICTS[name].items() if not check or k == check}
+    print(f"{label}: {time.monotonic() - began:.1f} s, {pauses} pauses of {PAUSE:g} s, "
+          f"time {result.get('time_budget')}")
+    assert pauses >= 1, "no pause landed in the grading: the test did not test"
+    assert "under_load" not in result, result["under_load"]
+    assert differences(result, expected) == ""
+
+
+def test_a_wall_clock_limit_loses_points_under_the_same_pauses(tmp_path: Path, saturated,
+                                                               monkeypatch) -> None:
+    """The wrong version: with the wall clock deciding, the paused grading's verdict is not the snapshot's."""
+    monkeypatch.setattr(runner, "CallClock", WallClock)
+    label = "solutions/week3::week3.go_to_goal.reach_goals"
+    result, pauses = grade_paused(label, tmp_path, saturated, seed=3)
+    found = differences(result, {"week3.go_to_goal.reach_goals":
+                                 VERDICTS["solutions/week3"]["week3.go_to_goal.reach_goals"]})
+    print(found)
+    assert pauses >= 1 and "timeout" in found
+
+
+# The stated bounds of a call that never answers: `call_seconds` of the worker's own time, or at most
+# `stall_seconds` of wall time; then the stack dump (runner: at most DUMP_PENDING_SECONDS + 2 x
+# DUMP_WAIT_SECONDS). Short limits here: the loop is hit at the first step.
+STUCK = Limits(call_seconds=0.5, total_seconds=20.0, stall_seconds=10.0)
+DUMP = runner.DUMP_PENDING_SECONDS + 2 * runner.DUMP_WAIT_SECONDS
+
+
+@pytest.mark.parametrize("name", ["week3_endless_loop", "week3_sleep_loop", "week3_busy_step"])
+def test_code_stuck_in_one_step_is_still_a_timeout_within_its_bound(name: str, tmp_path: Path,
+                                                                      saturated) -> None:
+    folder = mistakes.build("stuck", name, tmp_path, 3, folder_name="week3")
+    lines = (folder / "go_to_goal.py").read_text().splitlines()
+    line = next(i for i, text in enumerate(lines, 1) if "# STUCK" in text)
+    with Pauser(seconds=PAUSE, seed=7, leave=saturated.pids):
+        result = grade_submission(3, folder, seed=1, only="week3.go_to_goal.reach_goals", limits=STUCK)
+    check = result["checks"][0]
+    seconds = result["timing"]["checks"]["week3.go_to_goal.reach_goals"]
+    print(f"{name}: {check['status']} after {seconds:.1f} s: {check['message'][:160]}")
+    assert check["status"] == "timeout" and check["points"] == 0, check["message"]
+    assert f"go_to_goal.py:{line} in " in check["message"]
+    # the worker's start and load (own time, seconds under this load), then the stuck call's bound, a pause
+    assert seconds < 3 * STUCK.stall_seconds + DUMP + PAUSE
+    assert result["time_budget"]["used_seconds"] < STUCK.total_seconds
