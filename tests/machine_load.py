@@ -69,14 +69,16 @@ def descendants(root: int, leave: set[int]) -> list[int]:
 
 class Pauser:
     """A thread that stops every process this test process started (but `leave`) for `seconds`, at random
-    moments (`gap` seconds apart, drawn uniformly), until the block ends. `pauses`: how many it made (a
-    pause that found no process to stop does not count)."""
+    moments until the block ends: the first `first` seconds after the start, the next ones `gap` seconds
+    after the one before (each drawn uniformly). `pauses`: how many it made (a pause that found no process
+    to stop does not count)."""
 
-    def __init__(self, seconds: float = 3.0, seed: int = 0, gap: tuple[float, float] = (0.3, 1.5),
-                 leave: set[int] | None = None) -> None:
+    def __init__(self, seconds: float = 3.0, seed: int = 0, gap: tuple[float, float] = (1.0, 3.0),
+                 first: tuple[float, float] = (0.1, 0.5), leave: set[int] | None = None) -> None:
         self.seconds = seconds
         self.random = random.Random(seed)
         self.gap = gap
+        self.first = first
         self.leave = leave or set()
         self.pauses = 0
         self._stop = threading.Event()
@@ -91,8 +93,10 @@ class Pauser:
         self._thread.join()
 
     def _run(self) -> None:
-        while not self._stop.wait(self.random.uniform(*self.gap)):
-            self.pause_once()
+        gap = self.first
+        while not self._stop.wait(self.random.uniform(*gap)):
+            if self.pause_once():
+                gap = self.gap
 
     def pause_once(self) -> bool:
         """Stop the workers now, for `seconds`; False if there was none."""

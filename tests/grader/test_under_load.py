@@ -3,8 +3,9 @@ of the grading is stopped for 3 s at random moments, several times per grading, 
 the snapshot's (tests/data/verdicts/seed2014.json, as tests/grader/test_checks_fail.py). Code stuck in one
 step (an endless loop, a loop of sleeps, a computation far too long) is still a timeout, within its bound.
 
-By default a representative subset (week 3's solution whole, week 6's on the check a pause once cost it,
-one kept wrong version); every solution, stub and kept wrong version of weeks 3-7 with
+By default a representative subset (the solutions of weeks 3 and 6 on a scenario check each, week 6's
+being the one a pause once cost it, one kept wrong version on a property check, the endless loop); every
+check of every solution, stub and kept wrong version of weeks 3-7, and every kind of stuck code, with
 
     SIMIAM_LOAD_MATRIX=full python -m pytest tests/grader/test_under_load.py -n 0
 
@@ -30,6 +31,8 @@ from verdict_matrix import SNAPSHOT, versions
 from grader.grading import grade_submission
 from grader.sandbox import runner
 from grader.sandbox.limits import Limits
+from grader.sandbox.worker_clock import MACHINE, CallClock
+from grader.under_load import REDOS, UNDER_LOAD
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
 from load_wrong.wall_clock import WallClock  # noqa: E402
@@ -41,7 +44,8 @@ VERDICTS = json.loads(SNAPSHOT.read_text())["verdicts"]
 PAUSE = 3.0
 ROOT = Path(__file__).resolve().parents[2]
 # label or label::check (that check alone, against its verdict in the snapshot)
-SUBSET = ["solutions/week3", "solutions/week6::week6.laps.left", "week3_gains_in_execute::week3.pid.memory"]
+SUBSET = ["solutions/week3::week3.go_to_goal.reach_goals", "solutions/week6::week6.laps.left",
+          "week3_gains_in_execute::week3.pid.memory"]
 EVERY = sorted(label for label, week in versions().items() if 3 <= week <= 7)
 
 
@@ -85,34 +89,90 @@ def test_a_wall_clock_limit_loses_points_under_the_same_pauses(tmp_path: Path, s
                                                                monkeypatch) -> None:
     """The wrong version: with the wall clock deciding, the paused grading's verdict is not the snapshot's."""
     monkeypatch.setattr(runner, "CallClock", WallClock)
-    label = "solutions/week3::week3.go_to_goal.reach_goals"
+    label = f"solutions/week3::{SETTLE}"
     result, pauses = grade_paused(label, tmp_path, saturated, seed=3)
-    found = differences(result, {"week3.go_to_goal.reach_goals":
-                                 VERDICTS["solutions/week3"]["week3.go_to_goal.reach_goals"]})
+    found = differences(result, {SETTLE: VERDICTS["solutions/week3"][SETTLE]})
     print(found)
     assert pauses >= 1 and "timeout" in found
 
 
-# The stated bounds of a call that never answers: `call_seconds` of the worker's own time, or at most
+# The stated bounds of a call that never answers: `call_seconds` of the worker's own time, and at most
 # `stall_seconds` of wall time; then the stack dump (runner: at most DUMP_PENDING_SECONDS + 2 x
-# DUMP_WAIT_SECONDS). Short limits here: the loop is hit at the first step.
-STUCK = Limits(call_seconds=0.5, total_seconds=20.0, stall_seconds=10.0)
+# DUMP_WAIT_SECONDS). Short limits here: the code is stuck at the first step of the check's one run.
+STUCK = Limits(call_seconds=0.5, total_seconds=20.0)
 DUMP = runner.DUMP_PENDING_SECONDS + 2 * runner.DUMP_WAIT_SECONDS
+SETTLE = "week3.pid.settle_time"  # a scenario check of one run
+STUCK_VERSIONS = ["week3_endless_loop", "week3_sleep_loop", "week3_busy_step"]
 
 
-@pytest.mark.parametrize("name", ["week3_endless_loop", "week3_sleep_loop", "week3_busy_step"])
+@pytest.mark.parametrize("name", STUCK_VERSIONS if FULL else STUCK_VERSIONS[:1])
 def test_code_stuck_in_one_step_is_still_a_timeout_within_its_bound(name: str, tmp_path: Path,
                                                                       saturated) -> None:
     folder = mistakes.build("stuck", name, tmp_path, 3, folder_name="week3")
     lines = (folder / "go_to_goal.py").read_text().splitlines()
     line = next(i for i, text in enumerate(lines, 1) if "# STUCK" in text)
     with Pauser(seconds=PAUSE, seed=7, leave=saturated.pids):
-        result = grade_submission(3, folder, seed=1, only="week3.go_to_goal.reach_goals", limits=STUCK)
+        result = grade_submission(3, folder, seed=1, only=SETTLE, limits=STUCK)
     check = result["checks"][0]
-    seconds = result["timing"]["checks"]["week3.go_to_goal.reach_goals"]
+    seconds = result["timing"]["checks"][SETTLE]
     print(f"{name}: {check['status']} after {seconds:.1f} s: {check['message'][:160]}")
     assert check["status"] == "timeout" and check["points"] == 0, check["message"]
     assert f"go_to_goal.py:{line} in " in check["message"]
-    # the worker's start and load (own time, seconds under this load), then the stuck call's bound, a pause
-    assert seconds < 3 * STUCK.stall_seconds + DUMP + PAUSE
+    # a timeout (the student's own time ran out), never a stall; the check's one run ends at its first
+    # step, after the worker's start and load (own time, start_seconds at most) and the pauses
+    assert seconds < STUCK.start_seconds + STUCK.stall_seconds + DUMP + 2 * PAUSE
     assert result["time_budget"]["used_seconds"] < STUCK.total_seconds
+
+
+class StallingMachine(CallClock):
+    """A machine that holds up the waits numbered `first` to `first + count - 1` of the test (counted from
+    1, every wait of every worker) past their wall bound, at once: what `stall_seconds` of a paused
+    worker would give, without the wait."""
+
+    first, count, seen = 0, 0, 0
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        StallingMachine.seen += 1
+        self.stalls = self.first <= StallingMachine.seen < self.first + self.count
+
+    def next_wait(self) -> float:
+        return 0.0 if self.stalls else super().next_wait()
+
+    def look(self) -> str | None:
+        return MACHINE if self.stalls else super().look()
+
+
+def stalling(monkeypatch, first: int, count: int) -> None:
+    monkeypatch.setattr(StallingMachine, "first", first)
+    monkeypatch.setattr(StallingMachine, "count", count)
+    monkeypatch.setattr(StallingMachine, "seen", 0)
+    monkeypatch.setattr(runner, "CallClock", StallingMachine)
+
+
+REACH = "week3.go_to_goal.reach_goals"
+
+
+def test_a_check_the_machine_stalled_once_is_run_again_and_keeps_its_verdict(monkeypatch) -> None:
+    stalling(monkeypatch, first=30, count=1)  # one step of the first run
+    result = grade_submission(3, ROOT / "solutions" / "week3", seed=2014, hidden=True, only=REACH)
+    assert differences(result, {REACH: VERDICTS["solutions/week3"][REACH]}) == ""
+    assert result["time_budget"]["stalls"] == 1 and "under_load" not in result
+
+
+def test_a_check_the_machine_keeps_stalling_says_regrade_never_timeout(monkeypatch) -> None:
+    stalling(monkeypatch, first=30, count=10**6)  # every wait after the load
+    result = grade_submission(3, ROOT / "solutions" / "week3", seed=2014, hidden=True, only=REACH)
+    check = result["checks"][0]
+    print(check["message"])
+    assert check["status"] == "error" and check["points"] == 0
+    assert check["message"].startswith(UNDER_LOAD + ": ") and "timeout" not in check["message"]
+    assert result["under_load"]["checks"] == [REACH] and result["under_load"]["regrade"] is True
+    assert result["time_budget"]["stalls"] >= REDOS + 1  # each try, and each of its runs, stalled
+
+
+def test_a_submission_whose_load_keeps_stalling_is_not_charged(monkeypatch) -> None:
+    stalling(monkeypatch, first=1, count=10**6)
+    result = grade_submission(3, ROOT / "solutions" / "week3", seed=2014, hidden=True, only=REACH)
+    assert result["status"] == "invalid" and result["message"].startswith(UNDER_LOAD)
+    assert result["under_load"]["checks"] == ["load"]
