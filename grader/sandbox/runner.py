@@ -38,8 +38,9 @@ from grader.sandbox.worker_clock import MACHINE, STUDENT, CallClock
 
 DUMP_WAIT_SECONDS = 0.25   # how long a timed-out worker gets to write its stack dump before the kill
 DUMP_IDLE_SECONDS = 0.02
-# How long the grader waits for the worker to take the dump signal at all: on a loaded machine a spinning
-# worker may wait well over DUMP_WAIT_SECONDS for the CPU, and the signal stays pending until it runs.
+# How long the grader waits for the worker to take the dump signal at all, in the worker's own time (CPU and
+# sleep; at most its stall bound of wall time): on a loaded machine a spinning worker may wait well over
+# DUMP_WAIT_SECONDS for the CPU, and the signal stays pending until it runs.
 DUMP_PENDING_SECONDS = 2.0
 MAX_DUMP_BYTES = 64 * 1024
 STALL_SECONDS = 30.0  # default wall bound of one wait (Limits.stall_seconds): past it, a stall
@@ -209,8 +210,8 @@ class WorkerProcess:
         Only when a call has already timed out. The wait for the dump starts once the worker has taken the
         signal (an event, read in /proc), not when it was sent: with both cores busy a spinning worker can
         wait longer for the CPU than the dump takes, and a fixed wait then lost the location. A worker that
-        ignores the signal takes it at once; one that blocks it (or never gets the CPU) costs at most
-        DUMP_PENDING_SECONDS more."""
+        ignores the signal takes it at once; one that blocks it costs at most DUMP_PENDING_SECONDS of its own
+        time more (worker_clock: a worker that gets no CPU is waited for up to its stall bound)."""
         _drain(self._dump_r)  # anything written before now is not this timeout's dump
         pid = self._worker_pid()
         if pid is None:
@@ -219,7 +220,14 @@ class WorkerProcess:
             os.kill(pid, signal.SIGUSR1)
         except (ProcessLookupError, PermissionError):
             return b""
-        _wait_while(lambda: _signal_pending(pid, signal.SIGUSR1), self._dump_r, DUMP_PENDING_SECONDS)
+        clock = CallClock(pid, DUMP_PENDING_SECONDS, self.stall_seconds)  # the worker's time, as a call's
+
+        def pending() -> bool:
+            if not _signal_pending(pid, signal.SIGUSR1):
+                return False
+            return clock.next_wait() > 0 or clock.look() is None
+
+        _wait_while(pending, self._dump_r, clock.stall_seconds)
         return _collect(self._dump_r, DUMP_WAIT_SECONDS, DUMP_IDLE_SECONDS, MAX_DUMP_BYTES)
 
     def _worker_pid(self) -> int | None:

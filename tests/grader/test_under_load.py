@@ -97,10 +97,11 @@ def test_a_wall_clock_limit_loses_points_under_the_same_pauses(tmp_path: Path, s
 
 
 # The stated bounds of a call that never answers: `call_seconds` of the worker's own time, and at most
-# `stall_seconds` of wall time; then the stack dump (runner: at most DUMP_PENDING_SECONDS + 2 x
-# DUMP_WAIT_SECONDS). Short limits here: the code is stuck at the first step of the check's one run.
+# `stall_seconds` of wall time; then the stack dump (runner: the signal taken within DUMP_PENDING_SECONDS of
+# the worker's own time, at most `stall_seconds` of wall time, then 2 x DUMP_WAIT_SECONDS to read it).
+# Short limits here: the code is stuck at the first step of the check's one run.
 STUCK = Limits(call_seconds=0.5, total_seconds=20.0)
-DUMP = runner.DUMP_PENDING_SECONDS + 2 * runner.DUMP_WAIT_SECONDS
+DUMP = STUCK.stall_seconds + 2 * runner.DUMP_WAIT_SECONDS
 SETTLE = "week3.pid.settle_time"  # a scenario check of one run
 STUCK_VERSIONS = ["week3_endless_loop", "week3_sleep_loop", "week3_busy_step"]
 

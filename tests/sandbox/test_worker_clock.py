@@ -1,6 +1,6 @@
 """The per-call limit judges the worker's own time (CPU and sleep), never time the machine held it up, and
-still ends code that spins (in threads, in a child), sleeps or stops itself within a stated bound, in both
-isolation modes (a saturated machine: tests/grader/test_under_load.py). The kept wrong version
+still ends code that spins (in threads, in a child) or sleeps, and a worker kept stopped, within a stated
+bound, in both isolation modes (a saturated machine: tests/grader/test_under_load.py). The kept wrong version
 (tests/data/load_wrong/wall_clock.py: the wall clock decides, as before issue 34) times the honest worker
 out under the same pause."""
 
@@ -16,7 +16,7 @@ from machine_load import Pauser
 from sandbox_helpers import HONEST, attack, honest_probe
 
 from grader.sandbox import exposed, runner
-from grader.sandbox.errors import MachineStalled, SandboxError, StudentError, StudentTimeout
+from grader.sandbox.errors import MachineStalled, SandboxError, StudentTimeout
 from grader.sandbox.isolation import BWRAP
 from grader.sandbox.limits import Limits
 
@@ -100,23 +100,26 @@ def test_cpu_burnt_in_threads_or_a_child_counts(open_session, mode, how, monkeyp
 
 
 @needs_proc
-def test_a_worker_that_stops_itself_ends_within_the_wall_bound(open_session, mode):
-    """A stopped worker looks like a paused machine: it is never charged, and never waited for past
-    `stall_seconds` (a stall, graded again, never a verdict either way); the next call starts afresh."""
+def test_a_worker_stopped_past_the_wall_bound_is_a_stall_never_a_timeout(open_one):
+    """A worker the machine keeps stopped is never charged and never waited for past `stall_seconds`
+    (grader.grading grades that check again); the next call starts a fresh worker. (The worker cannot
+    stop itself: its filter refuses stop signals, tests/sandbox/test_attacks.py.)"""
     limits = Limits(call_seconds=1.0, total_seconds=30.0, stall_seconds=3.0)
-    session = open_session("time_use", limits)
-    began = time.monotonic()
-    try:
-        outcome: object = attack(session, how="self_stop")
-    except SandboxError as exc:
-        outcome = exc
-    wall = time.monotonic() - began
-    print(f"self_stop in {mode}: {outcome!r} after {wall:.2f} s")
-    assert isinstance(outcome, (MachineStalled, StudentError))  # StudentError: the signal is refused
-    assert wall < limits.stall_seconds + 2.0
-    if isinstance(outcome, MachineStalled):
-        assert session.budget.stalls and session.seconds_used < 0.5
+    session = open_one("time_use", limits)
     assert honest_probe(session) == pytest.approx(HONEST)
+    used, began = session.seconds_used, time.monotonic()
+    timer = threading.Timer(0.2, Pauser(seconds=6.0).pause_once)
+    timer.start()
+    try:
+        with pytest.raises(MachineStalled) as caught:
+            session.call("probe", name="nap", args={"seconds": 0.5})
+        wall = time.monotonic() - began
+    finally:
+        timer.join()
+    print(f"{caught.value.message} after {wall:.2f} s")
+    assert limits.stall_seconds <= wall < limits.stall_seconds + 2.0
+    assert session.budget.stalls == [caught.value.message] and session.seconds_used - used < 0.5
+    assert honest_probe(session) == pytest.approx(HONEST) and session.starts == 2
 
 
 def test_a_blind_clock_falls_back_on_a_generous_wall_clock(open_one, monkeypatch):
