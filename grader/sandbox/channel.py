@@ -101,7 +101,7 @@ class PortableWorker(WorkerProcess):
         self.stack_dump = b""
         self.stall_seconds = STALL_SECONDS
         self.last_clock = None
-        self._host_pid = None
+        self.host_pid = None
 
     def _write(self, data: bytes) -> None:
         if self._writer is None:

@@ -93,7 +93,7 @@ class WorkerProcess:
         self.stack_dump = b""        # what the worker dumped when its last call timed out (untrusted)
         self.stall_seconds = STALL_SECONDS
         self.last_clock: CallClock | None = None  # the clock of the last wait (grader.sandbox.worker_clock)
-        self._host_pid: int | None = None
+        self.host_pid: int | None = None  # the worker's pid as the grader sees it, once it is ready
 
     # ---- messages ----------------------------------------------------------------------------------
     def wait_ready(self, timeout: float) -> dict:
@@ -102,7 +102,8 @@ class WorkerProcess:
         message = self._receive(0, self._clock(self.proc.pid, timeout), "start")
         value = message.get("value")
         self.ready = value if isinstance(value, dict) else {}
-        self._host_pid = self._worker_pid()
+        # the worker's host pid, read once; under bubblewrap, if it cannot be found, the sandbox's own tree
+        self.host_pid = self._worker_pid() or self.proc.pid
         return message
 
     def request(self, op: str, fields: dict, timeout: float) -> dict:
@@ -132,7 +133,7 @@ class WorkerProcess:
         time and sleep, never time the machine held it up (grader.sandbox.worker_clock; see `_receive`)."""
         if self.dead:
             raise WorkerDied(self.dead)
-        return self._receive(rid, self._clock(self._host_pid, timeout), op)
+        return self._receive(rid, self._clock(self.host_pid, timeout), op)
 
     def _clock(self, pid: int | None, timeout: float) -> CallClock:
         self.last_clock = CallClock(pid, timeout, self.stall_seconds)

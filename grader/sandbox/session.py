@@ -211,7 +211,7 @@ class StudentSession:
         refused = self._worker.ready.get("refused_limits")
         self.isolation_note = with_refused_limits(self._base_note, refused)  # the same after a restart
         self.numerics = numerics.checked(self._worker.ready.get("numerics"))
-        self._meter = CpuMeter(self._worker._host_pid)  # the bootstrap's CPU is the grader's, not charged
+        self._meter = CpuMeter(self._worker.host_pid)  # the bootstrap's CPU is the grader's, not charged
         try:
             value = self._request("load", {}, None)
         except MachineStalled:
