@@ -10,14 +10,16 @@ check of every solution, stub and kept wrong version of weeks 3-7, and every kin
     SIMIAM_LOAD_MATRIX=full python -m pytest tests/grader/test_under_load.py -n 0
 
 The kept wrong version of the limit checker (tests/data/load_wrong/wall_clock.py, the wall clock deciding)
-loses points under the same pauses: the comparison can fail.
+loses points under a 3 s pause inside a call, which costs the real one nothing: the comparison can fail.
 """
 
 from __future__ import annotations
 
+import itertools
 import json
 import os
 import sys
+import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -31,6 +33,7 @@ from verdict_matrix import SNAPSHOT, versions
 from grader.grading import grade_submission
 from grader.sandbox import runner
 from grader.sandbox.limits import Limits
+from grader.sandbox.session import RemoteBrain
 from grader.sandbox.worker_clock import MACHINE, CallClock
 from grader.under_load import REDOS, UNDER_LOAD
 
@@ -86,15 +89,32 @@ def test_the_verdict_under_load_and_pauses_is_the_snapshots(label: str, tmp_path
     assert differences(result, expected) == ""
 
 
-def test_a_wall_clock_limit_loses_points_under_the_same_pauses(tmp_path: Path, saturated,
-                                                               monkeypatch) -> None:
-    """The wrong version: with the wall clock deciding, the paused grading's verdict is not the snapshot's."""
-    monkeypatch.setattr(runner, "CallClock", WallClock)
-    label = f"solutions/week3::{SETTLE}"
-    result, pauses = grade_paused(label, tmp_path, saturated, seed=3)
+def paused_at_step_20(saturated: Saturated, monkeypatch) -> tuple[str, int]:
+    """week 3's solution on one scenario check, its worker paused for 3 s at the run's 20th step (so that the
+    pause surely lands in a call): (what differs from the snapshot, pauses made)."""
+    pauser, steps, real = Pauser(seconds=PAUSE, leave=saturated.pids), itertools.count(), RemoteBrain.step
+
+    def step(self, readings):
+        if next(steps) == 20:
+            threading.Thread(target=pauser.pause_once).start()
+        return real(self, readings)
+
+    monkeypatch.setattr(RemoteBrain, "step", step)
+    result = grade_submission(3, ROOT / "solutions" / "week3", seed=2014, hidden=True, only=SETTLE)
     found = differences(result, {SETTLE: VERDICTS["solutions/week3"][SETTLE]})
-    print(found)
-    assert pauses >= 1 and "timeout" in found
+    print(found or "the snapshot's verdict")
+    return found, pauser.pauses
+
+
+def test_a_pause_inside_a_call_costs_nothing(saturated, monkeypatch) -> None:
+    assert paused_at_step_20(saturated, monkeypatch) == ("", 1)
+
+
+def test_a_wall_clock_limit_loses_points_under_the_same_pause(saturated, monkeypatch) -> None:
+    """The wrong version: with the wall clock deciding, the same pause is a timeout against the student."""
+    monkeypatch.setattr(runner, "CallClock", WallClock)
+    found, pauses = paused_at_step_20(saturated, monkeypatch)
+    assert pauses == 1 and "got ['timeout', 0.0]" in found
 
 
 # The stated bounds of a call that never answers: `call_seconds` of the worker's own time, and at most
