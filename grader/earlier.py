@@ -62,10 +62,14 @@ def reference_folder(week: int, spliced: Path, into: Path) -> Path | None:
     return into
 
 
+SESSION_KEY = "earlier:session"  # in ctx.memo: kept when a stalled check is run again (grader.under_load)
+
+
 def scenario_session(ctx: Any) -> tuple[Any, str]:
     """The session a week's scenarios run on, and a note for the check's message ("" when all is as it
-    should be). Made once per grading (ctx.memo) through the engine's `ctx.open_session`."""
-    key = "earlier:session"
+    should be). Made once per grading (ctx.memo) through the engine's `ctx.open_session`, on the grading's
+    one time budget."""
+    key = SESSION_KEY
     if key not in ctx.memo:
         folder = None
         if ctx.spliced is not None and ctx.open_session is not None:

@@ -20,12 +20,14 @@ from pathlib import Path
 from typing import Any
 
 from grader.checks import Check, Context, checks_for_week, grader_error, run_check
+from grader.earlier import SESSION_KEY
 from grader.result import CheckResult, loss_summary, submission_result
 from grader.result_size import bound_result
-from grader.sandbox.errors import SandboxError
+from grader.sandbox.errors import MachineStalled, SandboxError
 from grader.sandbox.limits import Limits
 from grader.sandbox.output import cut_middle
 from grader.sandbox.session import StudentSession
+from grader.under_load import BLIND_NOTE, REDOS, UNDER_LOAD, run_again_if_stalled, under_load_record
 from simiam import safe_write
 from simiam.course.shipped import files_to_write, missing_note, shipped_version
 
@@ -57,6 +59,7 @@ class _Job:
     began: float
     start_nudge: tuple[float, float] = (0.0, 0.0)
     official: bool = False
+    budget: Any = None  # the grading's TimeBudget: the main session's, shared with any other it opens
 
 
 def select_checks(week: int, hidden: bool, only: str | None = None) -> tuple[list[Check], list[Check]]:
@@ -239,8 +242,10 @@ def _start(week: int, submission: Path, tmp: Path, limits: Limits | None, sandbo
 
 
 def _open_session(job: _Job, folder: Path, others: list[StudentSession]) -> StudentSession:
-    """A worker on another folder for one check (closed with the grading's own)."""
-    other = StudentSession(job.week, folder, job.limits, sandbox=job.sandbox, official=job.official)
+    """A worker on another folder for one check (closed with the grading's own), on the grading's one
+    time budget (issue 30: a second worker never starts with a fresh one)."""
+    other = StudentSession(job.week, folder, job.limits, sandbox=job.sandbox, official=job.official,
+                           budget=job.budget)
     others.append(other)
     other.start()
     return other
@@ -262,9 +267,16 @@ def _grade(job: _Job, started: _Started) -> dict:
     problems, session = started.problems, started.session
     job.extra["notices"] = started.notices
     others: list[StudentSession] = []  # sessions checks opened on other folders (grader.earlier)
+    job.budget = session.budget
     try:
         try:
-            loaded = session.load()
+            loaded = _load(session)
+        except MachineStalled as exc:
+            job.extra["under_load"] = under_load_record(["load"], session.budget.stalls)
+            job.extra["time_budget"] = session.budget.to_json()
+            message = (f"{UNDER_LOAD}: the grading machine was too busy to load your code ({exc.message}), "
+                       f"{REDOS + 1} times; this says nothing about your code")
+            return _invalid(job.week, job.seed, job.submission, job.selected, message, job.extra)
         except SandboxError as exc:
             job.extra["isolation"] = session.isolation
             job.extra["isolation_note"] = session.isolation_note
@@ -299,20 +311,26 @@ def _grade(job: _Job, started: _Started) -> dict:
         )
         timing: dict[str, float] = {}
         ran: dict[str, CheckResult] = {}
+        spoiled: list[str] = []  # checks the machine kept from a verdict (grader.under_load)
         # Visible checks first: what the code prints until then is the result's student_output. Then each
         # hidden check, its output taken after it into its own result: code that prints (or keeps and
         # prints later) a hidden goal shows it only where that check's result is shown.
         visible = [c for c in job.selected if c.visibility == "visible"]
         for check in visible:
-            ran[check.id] = _run_timed(check, ctx, problems, timing)
+            ran[check.id] = _run_timed(check, ctx, problems, timing, spoiled)
         job.extra["student_output"] = cut_middle(session.take_output(), 4000)
         for check in job.selected:
             if check.id not in ran:
-                ran[check.id] = _run_timed(check, ctx, problems, timing)
+                ran[check.id] = _run_timed(check, ctx, problems, timing, spoiled)
                 ran[check.id].printed = cut_middle(session.take_output(), HIDDEN_OUTPUT_CHARS)
         results = [ran[check.id] for check in job.selected]
         job.extra["problems"] = problems
         job.extra["timing"] = {"total_seconds": round(time.monotonic() - job.began, 3), "checks": timing}
+        job.extra["time_budget"] = session.budget.to_json()
+        if spoiled:
+            job.extra["under_load"] = under_load_record(spoiled, session.budget.stalls)
+        if session.budget.blind:
+            job.extra["notices"] = [*job.extra.get("notices", []), BLIND_NOTE]
     finally:
         session.close()
         for other in others:
@@ -328,10 +346,25 @@ def _grade(job: _Job, started: _Started) -> dict:
     )
 
 
+def _load(session: StudentSession) -> dict:
+    """session.load(), tried again (REDOS times at most) while the machine stalls the worker's start."""
+    for attempt in range(REDOS + 1):
+        try:
+            return session.load()
+        except MachineStalled:
+            if attempt == REDOS:
+                raise
+    raise AssertionError("unreachable")
+
+
 def _run_timed(check: Check, ctx: Context, problems: dict[str, list[str]],
-               timing: dict[str, float]) -> CheckResult:
+               timing: dict[str, float], spoiled: list[str]) -> CheckResult:
+    """Run one check, again while the machine stalls it (grader.under_load); its time into `timing`."""
     t0 = time.monotonic()
-    result = run_check(check, ctx, problems)
+    result, stalls = run_again_if_stalled(lambda: run_check(check, ctx, problems), ctx.session.budget,
+                                          ctx.memo, keep=lambda key: key == SESSION_KEY)
+    if stalls:
+        spoiled.append(check.id)
     timing[check.id] = round(time.monotonic() - t0, 3)
     return result
 

@@ -73,6 +73,16 @@ class BatchError(Exception):
     """The batch cannot run at all (exit status 2)."""
 
 
+def under_load(result: dict) -> list[str]:
+    """The checks of a stored result the machine kept from a verdict ("load": the whole submission);
+    [] for one graded in full. The result is read back from disk: anything malformed counts as none."""
+    record = result.get("under_load")
+    checks = record.get("checks") if isinstance(record, dict) else None
+    if not isinstance(checks, list):
+        return []
+    return [printable(str(c))[:100] for c in checks[:50]] or ["?"]
+
+
 def default_jobs() -> int:
     """The number of cores this process may use."""
     try:
@@ -250,7 +260,9 @@ class _Run:
                             self.grader)
             stem = self.stems[student.id]
             stored = read_json(self.out / f"{stem}.json")
-            if not self.options.force and is_fresh(stored, key) and (self.out / f"{stem}.html").is_file():
+            # a result the machine spoiled (grader.under_load) is graded again by the next run, never reused
+            if not self.options.force and is_fresh(stored, key) and (self.out / f"{stem}.html").is_file() \
+                    and not (isinstance(stored, dict) and stored.get("under_load")):
                 assert stored is not None
                 if self._restate(student, stem, stored):
                     self.record[student.id] = {"status": stored["status"], "cached": True}
@@ -356,6 +368,9 @@ class _Run:
                             "finished_s": round(time.monotonic() - self.clock, 3)}
         if status != "graded":
             self.progress.message(f"{shown(sid)}: {status}: {str(result.get('message', ''))[:300]}")
+        if under_load(result):
+            self.progress.message(f"{shown(sid)}: graded under load: regrade "
+                                  f"({', '.join(under_load(result)[:6])} got no verdict on this machine)")
         self.progress.done(status)
 
     def _settle(self, task: dict, outcome: dict) -> tuple[dict, str | None]:
@@ -384,6 +399,7 @@ class _Run:
         stems = {sid: self.stems[sid] for sid in results}
         self._prune_gradescope(set(stems.values()))
         not_graded = sorted(shown(s.id) for s in self.students if s.id not in results)
+        regrade = sorted(shown(sid) for sid, r in results.items() if under_load(r))
         counts = dict.fromkeys(STATUSES, 0)
         for result in results.values():
             status = result.get("status")
@@ -404,6 +420,8 @@ class _Run:
                   "finished": datetime.now(timezone.utc).isoformat(timespec="seconds"),
                   "seconds": round(time.monotonic() - self.clock, 3), "interrupted": self.interrupted,
                   "students": len(self.students), "counts": counts,
+                  # students the machine kept from a verdict (grader.under_load): the next run grades them
+                  "under_load": regrade,
                   "this_run": {"graded_now": sum(not r["cached"] for r in self.record.values()),
                                "skipped": sum(r["cached"] for r in self.record.values())},
                   "per_student": {sid: {**self.record.get(sid, {}), "status": r.get("status"),
@@ -452,4 +470,10 @@ class _Run:
             stream.write(f"on the roster with no submission: {len(report['missing'])}\n")
         stream.write(f"week {report['week']}: {counts} ({report['this_run']['skipped']} reused); "
                      f"gradebook {self.out / 'gradebook.csv'}, summary {self.out / 'summary.html'}\n")
+        regrade = report["under_load"]
+        if regrade:
+            names = ", ".join(regrade[:20]) + (", ..." if len(regrade) > 20 else "")
+            stream.write(f"graded under load, regrade: {len(regrade)} student(s) got no verdict on a check "
+                         f"because this machine was too busy ({names}); run the same command again to grade "
+                         f"them again\n")
         stream.flush()

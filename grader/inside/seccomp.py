@@ -8,6 +8,10 @@ keeps student code off the network. It allows every system call except:
   fork is one process (no writable cgroup v2 memory controller is needed for that). Student code has no
   use for processes; `os.fork`, `subprocess` and `multiprocessing` raise PermissionError;
 - clone() with a CLONE_NEW* flag, unshare(), setns() (no user namespace in which to play root);
+- sending a stop signal (SIGSTOP, SIGTSTP, SIGTTIN, SIGTTOU) by any of kill, tkill, tgkill, rt_sigqueueinfo,
+  rt_tgsigqueueinfo, pidfd_send_signal (EPERM): a stopped worker looks to the grader like a machine that
+  paused it, which is never charged to the student (grader.sandbox.worker_clock), so the worker may not
+  stop itself;
 - clone3() (ENOSYS, so the C library falls back to clone(), whose flags the filter can see);
 - io_uring_setup (it could open sockets behind the filter's back), bpf, perf_event_open, userfaultfd,
   keyctl/add_key/request_key;
@@ -38,15 +42,21 @@ _ARCHES = {
     "x86_64": (0xC000003E, 0x40000000, {
         "fork": 57, "vfork": 58, "socket": 41, "clone": 56, "clone3": 435, "unshare": 272, "setns": 308,
         "io_uring_setup": 425, "bpf": 321, "perf_event_open": 298, "userfaultfd": 323, "keyctl": 250,
-        "add_key": 248, "request_key": 249}),
+        "add_key": 248, "request_key": 249, "kill": 62, "tkill": 200, "tgkill": 234, "rt_sigqueueinfo": 129,
+        "rt_tgsigqueueinfo": 297, "pidfd_send_signal": 424}),
     "aarch64": (0xC00000B7, None, {
         "socket": 198, "clone": 220, "clone3": 435, "unshare": 97, "setns": 268, "io_uring_setup": 425,
         "bpf": 280, "perf_event_open": 241, "userfaultfd": 282, "keyctl": 219, "add_key": 217,
-        "request_key": 218}),
+        "request_key": 218, "kill": 129, "tkill": 130, "tgkill": 131, "rt_sigqueueinfo": 138,
+        "rt_tgsigqueueinfo": 240, "pidfd_send_signal": 424}),
 }
 _FORKS = ("fork", "vfork")  # aarch64 has neither: its C library forks through clone()
 _DENIED = ("unshare", "setns", "io_uring_setup", "bpf", "perf_event_open", "userfaultfd", "keyctl", "add_key",
            "request_key")
+# the system calls that send a signal, by which argument holds the signal's number
+_SIGNAL_AT = {"kill": 1, "tkill": 1, "rt_sigqueueinfo": 1, "pidfd_send_signal": 1, "tgkill": 2,
+              "rt_tgsigqueueinfo": 2}
+_STOP_SIGNALS = (19, 23)  # SIGSTOP, SIGTSTP, SIGTTIN, SIGTTOU: 19..22 on x86-64 and aarch64 alike
 
 # classic BPF opcodes
 _LD_W_ABS = 0x20
@@ -74,7 +84,15 @@ def program(machine: str | None = None) -> bytes | None:
         *[(_JEQ_K, "deny", None, nr[name]) for name in _FORKS if name in nr and DENY_NEW_PROCESSES],
         (_JEQ_K, "socket", None, nr["socket"]),
         (_JEQ_K, "clone", None, nr["clone"]),
+        *[(_JEQ_K, f"signal{at}", None, nr[name]) for name, at in _SIGNAL_AT.items()],
         (_RET_K, None, None, _RET_ALLOW),
+        *[step for at in (1, 2) for step in (
+            (f"signal{at}", None, None, 0),
+            (_LD_W_ABS, None, None, 16 + 8 * at),        # A = low word of args[at]: the signal
+            (_JGE_K, "allow", None, _STOP_SIGNALS[1]),
+            (_JGE_K, "stop", "allow", _STOP_SIGNALS[0]))],
+        ("stop", None, None, 0),
+        (_RET_K, None, None, _RET_ERRNO | errno.EPERM),
         ("socket", None, None, 0),
         (_LD_W_ABS, None, None, 16),                     # A = low word of args[0]: the address family
         (_JEQ_K, "allow", "deny", _AF_UNIX),

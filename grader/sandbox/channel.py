@@ -37,6 +37,7 @@ from grader.sandbox import winjob
 from grader.sandbox.isolation import WorkerPlan
 from grader.sandbox.output import CappedOutput
 from grader.sandbox.runner import (
+    STALL_SECONDS,
     WorkerProcess,
     _json,
 )
@@ -98,6 +99,9 @@ class PortableWorker(WorkerProcess):
         self.dead: str | None = None
         self.ready: dict = {}
         self.stack_dump = b""
+        self.stall_seconds = STALL_SECONDS
+        self.last_clock = None
+        self.host_pid = None
 
     def _write(self, data: bytes) -> None:
         if self._writer is None:

@@ -50,6 +50,13 @@ class StudentTimeout(SandboxError):
         self.function = function
 
 
+class MachineStalled(SandboxError):
+    """A wait for the worker passed its wall bound while the worker's own time (CPU and sleep) stayed under
+    its limit: the machine held it up (stopped, starved of CPU), not the student's code. Never a verdict
+    against the student: the grading redoes the check, and says "graded under load: regrade" if it cannot
+    (grader.grading)."""
+
+
 class WorkerDied(SandboxError):
     """The worker process ended or broke the protocol (exit, os._exit, crash, memory, output abuse)."""
 

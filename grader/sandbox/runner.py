@@ -30,17 +30,20 @@ from collections.abc import Callable
 
 from grader.inside.answer_bounds import MAX_ANSWER_BYTES, OutOfBounds, check_message
 from grader.inside.protocol import MAX_MESSAGE, LineReader, ProtocolError, decode, encode_request
-from grader.sandbox.errors import StudentTimeout, WorkerDied
+from grader.sandbox.errors import MachineStalled, StudentTimeout, WorkerDied
 from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
 from grader.sandbox.leftovers import remove_files_of, remove_ipc_of
 from grader.sandbox.output import CappedOutput
+from grader.sandbox.worker_clock import MACHINE, STUDENT, CallClock
 
 DUMP_WAIT_SECONDS = 0.25   # how long a timed-out worker gets to write its stack dump before the kill
 DUMP_IDLE_SECONDS = 0.02
-# How long the grader waits for the worker to take the dump signal at all: on a loaded machine a spinning
-# worker may wait well over DUMP_WAIT_SECONDS for the CPU, and the signal stays pending until it runs.
+# How long the grader waits for the worker to take the dump signal at all, in the worker's own time (CPU and
+# sleep; at most its stall bound of wall time): on a loaded machine a spinning worker may wait well over
+# DUMP_WAIT_SECONDS for the CPU, and the signal stays pending until it runs.
 DUMP_PENDING_SECONDS = 2.0
 MAX_DUMP_BYTES = 64 * 1024
+STALL_SECONDS = 30.0  # default wall bound of one wait (Limits.stall_seconds): past it, a stall
 
 # getattr: Windows has no SIGXCPU, SIGXFSZ or SIGKILL (this module is imported there too).
 _SIGNAL_MEANING: dict[int, str] = {
@@ -88,13 +91,19 @@ class WorkerProcess:
         self.dead: str | None = None
         self.ready: dict = {}        # the worker's first message, sent before any student code ran
         self.stack_dump = b""        # what the worker dumped when its last call timed out (untrusted)
+        self.stall_seconds = STALL_SECONDS
+        self.last_clock: CallClock | None = None  # the clock of the last wait (grader.sandbox.worker_clock)
+        self.host_pid: int | None = None  # the worker's pid as the grader sees it, once it is ready
 
     # ---- messages ----------------------------------------------------------------------------------
     def wait_ready(self, timeout: float) -> dict:
-        """The worker's first message (id 0) once its bootstrap is done."""
-        message = self._receive(0, time.monotonic() + timeout, "start")
+        """The worker's first message (id 0) once its bootstrap is done, within `timeout` seconds of the
+        starting processes' own time (worker_clock: a loaded machine only makes the start slower)."""
+        message = self._receive(0, self._clock(self.proc.pid, timeout), "start")
         value = message.get("value")
         self.ready = value if isinstance(value, dict) else {}
+        # the worker's host pid, read once; under bubblewrap, if it cannot be found, the sandbox's own tree
+        self.host_pid = self._worker_pid() or self.proc.pid
         return message
 
     def request(self, op: str, fields: dict, timeout: float) -> dict:
@@ -120,10 +129,15 @@ class WorkerProcess:
         return rid
 
     def receive(self, rid: int, timeout: float, op: str) -> dict:
-        """The answer with id `rid`, within `timeout` seconds from now (see `_receive`)."""
+        """The answer with id `rid`, within `timeout` seconds of the worker's own time from now: its CPU
+        time and sleep, never time the machine held it up (grader.sandbox.worker_clock; see `_receive`)."""
         if self.dead:
             raise WorkerDied(self.dead)
-        return self._receive(rid, time.monotonic() + timeout, op)
+        return self._receive(rid, self._clock(self.host_pid, timeout), op)
+
+    def _clock(self, pid: int | None, timeout: float) -> CallClock:
+        self.last_clock = CallClock(pid, timeout, self.stall_seconds)
+        return self.last_clock
 
     def no_more_answers(self) -> None:
         """After the last answer of a `probe_many`: anything already read beyond it is an answer nobody
@@ -143,7 +157,7 @@ class WorkerProcess:
                 if not _wait(self._req_w, select.POLLOUT, 5.0):
                     self._die("it stopped reading requests")
 
-    def _receive(self, rid: int, deadline: float, op: str) -> dict:
+    def _receive(self, rid: int, clock: CallClock, op: str) -> dict:
         while True:
             try:
                 line = self._reader.pop_line()
@@ -160,13 +174,21 @@ class WorkerProcess:
                 if message.get("id") != rid or type(message.get("ok")) is not bool:
                     self._die("it sent an answer that does not match the question")
                 return message
-            left = deadline - time.monotonic()
+            left = clock.next_wait()
             if left <= 0:
-                if op != "start":
-                    self.stack_dump = self._dump_stack()
-                self.kill()
-                what = "the worker did not start" if op == "start" else "no answer"
-                raise StudentTimeout(f"{what} within the time limit")
+                verdict = clock.look()
+                if verdict == MACHINE:  # not the student's doing: no location, no timeout
+                    self.kill()
+                    raise MachineStalled(
+                        f"the machine held the worker up: {clock.wall:.1f} s passed while it ran "
+                        f"{clock.own:.2f} s of its {clock.limit:g} s")
+                if verdict == STUDENT:
+                    if op != "start":
+                        self.stack_dump = self._dump_stack()
+                    self.kill()
+                    what = "the worker did not start" if op == "start" else "no answer"
+                    raise StudentTimeout(f"{what} within the time limit")
+                continue
             data = self._read_answers(left)
             if data is None:
                 continue
@@ -189,8 +211,8 @@ class WorkerProcess:
         Only when a call has already timed out. The wait for the dump starts once the worker has taken the
         signal (an event, read in /proc), not when it was sent: with both cores busy a spinning worker can
         wait longer for the CPU than the dump takes, and a fixed wait then lost the location. A worker that
-        ignores the signal takes it at once; one that blocks it (or never gets the CPU) costs at most
-        DUMP_PENDING_SECONDS more."""
+        ignores the signal takes it at once; one that blocks it costs at most DUMP_PENDING_SECONDS of its own
+        time more (worker_clock: a worker that gets no CPU is waited for up to its stall bound)."""
         _drain(self._dump_r)  # anything written before now is not this timeout's dump
         pid = self._worker_pid()
         if pid is None:
@@ -199,7 +221,14 @@ class WorkerProcess:
             os.kill(pid, signal.SIGUSR1)
         except (ProcessLookupError, PermissionError):
             return b""
-        _wait_while(lambda: _signal_pending(pid, signal.SIGUSR1), self._dump_r, DUMP_PENDING_SECONDS)
+        clock = CallClock(pid, DUMP_PENDING_SECONDS, self.stall_seconds)  # the worker's time, as a call's
+
+        def pending() -> bool:
+            if not _signal_pending(pid, signal.SIGUSR1):
+                return False
+            return clock.next_wait() > 0 or clock.look() is None
+
+        _wait_while(pending, self._dump_r, clock.stall_seconds)
         return _collect(self._dump_r, DUMP_WAIT_SECONDS, DUMP_IDLE_SECONDS, MAX_DUMP_BYTES)
 
     def _worker_pid(self) -> int | None:

@@ -8,9 +8,12 @@
 The worker reads a private copy of `spliced_dir` (grader.sandbox.workdir), never the folder itself.
 `call` returns the worker's JSON value (untrusted: check it with grader.sandbox.validate) or raises
 StudentError (the student's code raised; file and line inside the submission), StudentTimeout (per call, or
-the submission's total budget is spent; with `file`, `line` and `function` of the student's code that was
+the grading's total budget is spent; with `file`, `line` and `function` of the student's code that was
 still running, read from the worker's stack dump by grader.sandbox.stuck, when it can be known), WorkerDied
-(exit, kill, limits, protocol abuse). After a kill the
+(exit, kill, limits, protocol abuse), MachineStalled (a wall bound passed while the student's own time did
+not: the machine's fault, never a verdict; grader.grading redoes the check).
+Time limits count the worker's own time (grader.sandbox.worker_clock); the grading's total is one
+TimeBudget (grader.sandbox.time_budget), which every session of a grading shares (`budget=`). After a kill the
 next call starts a fresh worker, unless importing the submission is what killed it: then every call raises
 that same WorkerDied without starting again.
 """
@@ -37,10 +40,11 @@ from grader.inside.caps import (
 from grader.sandbox import isolation
 from grader.sandbox.capabilities import has_module, with_refused_limits
 from grader.sandbox.channel import PortableWorker
-from grader.sandbox.errors import SandboxUnavailable, StudentError, StudentTimeout, WorkerDied
+from grader.sandbox.errors import MachineStalled, SandboxUnavailable, StudentError, StudentTimeout, WorkerDied
 from grader.sandbox.limits import Limits
 from grader.sandbox.runner import RequestTooLarge, WorkerProcess
 from grader.sandbox.stuck import Stuck, find_stuck
+from grader.sandbox.time_budget import CpuMeter, TimeBudget
 from grader.sandbox.validate import BadValue
 from grader.sandbox.workdir import WorkCopy
 from simiam import numerics
@@ -55,7 +59,8 @@ class StudentSession:
     def __init__(self, week: int, spliced_dir: Path | str, limits: Limits | None = None, *,
                  sandbox: str = "auto", probes: str = "grader.inside.probes", probes_file: Path | None = None,
                  extra_paths: tuple[str, ...] = (),
-                 loader: str = "simiam.course.loader:load_submission", official: bool = False) -> None:
+                 loader: str = "simiam.course.loader:load_submission", official: bool = False,
+                 budget: TimeBudget | None = None) -> None:
         self.week = int(week)
         self.spliced_dir = Path(spliced_dir).resolve()
         self.limits = limits or Limits()
@@ -74,12 +79,20 @@ class StudentSession:
         self.isolation_note = self._base_note = isolation.describe(self.isolation, official=official)
         self.numerics: dict[str, object] = numerics.checked(None)  # what the worker reports when it starts
         self._spawned: float | None = None  # when a worker was spawned that is not waited for yet
-        self.seconds_used = 0.0      # wall time of calls, counted against limits.total_seconds
+        # the grading's time, shared with every session it opens (limits.total_seconds of own time)
+        self.budget = budget or TimeBudget(self.limits.total_seconds, self.limits.total_wall_seconds)
+        self._meter: CpuMeter | None = None  # the CPU time of the current worker
         self.calls = 0
         self.starts = 0
         self.start_seconds: list[float] = []
 
     # ---- public ------------------------------------------------------------------------------------
+    @property
+    def seconds_used(self) -> float:
+        """The grading's time charged so far: its workers' CPU time and sleep (every session sharing
+        the budget), or the wall time of calls where that cannot be read."""
+        return self.budget.used
+
     def start(self) -> None:
         """Spawn the worker now and return at once: it starts (0.15-0.3 s) while the grader imports its
         checks. The first load() or call() waits for it. Nothing is raised here: a worker that cannot
@@ -132,9 +145,9 @@ class StudentSession:
                 half = len(chunk) // 2
                 todo[:0] = [chunk[:half], chunk[half:]]
                 continue
-            except (StudentTimeout, WorkerDied) as exc:  # no worker, or no budget left: what call raises
+            except (StudentTimeout, WorkerDied, MachineStalled) as exc:  # no worker, no budget: as call
                 return [*results, exc]
-            if isinstance(results[-1], (StudentTimeout, WorkerDied)):
+            if isinstance(results[-1], (StudentTimeout, WorkerDied, MachineStalled)):
                 break
         return results
 
@@ -183,8 +196,13 @@ class StudentSession:
             self._spawn()
         assert self._worker is not None and self._spawned is not None
         began, self._spawned = self._spawned, None
+        self._worker.stall_seconds = self.limits.stall_seconds
         try:
             self._worker.wait_ready(self.limits.start_seconds)
+        except MachineStalled:
+            self._retire()
+            self.budget.stalls.append("the worker's start")
+            raise
         except (StudentTimeout, WorkerDied) as exc:
             self._retire()
             raise WorkerDied(f"the sandbox did not start: {exc.message}. "
@@ -193,8 +211,11 @@ class StudentSession:
         refused = self._worker.ready.get("refused_limits")
         self.isolation_note = with_refused_limits(self._base_note, refused)  # the same after a restart
         self.numerics = numerics.checked(self._worker.ready.get("numerics"))
+        self._meter = CpuMeter(self._worker.host_pid)  # the bootstrap's CPU is the grader's, not charged
         try:
             value = self._request("load", {}, None)
+        except MachineStalled:
+            raise  # _request retired the worker: the next call starts it again
         except (WorkerDied, StudentTimeout) as exc:
             self._load_death = WorkerDied(f"while your files were being imported, {exc.message}")
             raise self._load_death from None
@@ -216,7 +237,7 @@ class StudentSession:
                 work.remove()
                 raise
             self._work = work
-        rlimits = self.limits.for_worker(self.limits.total_seconds - self.seconds_used) \
+        rlimits = self.limits.for_worker(self.budget.left()) \
             if has_module("resource") else None  # none to set: the isolation note says "local check only"
         plan = isolation.plan_worker(
             self.isolation, self._work.path, dict(self._config, rlimits=rlimits), uid=self._uid,
@@ -237,12 +258,15 @@ class StudentSession:
         limit = min(per_call, self._budget_left())
         began = time.monotonic()
         self.calls += 1
+        self._worker.last_clock = None
         try:
             response = self._worker.request(op, fields, limit)
         except StudentTimeout:
             raise self._timed_out(limit, per_call) from None
+        except MachineStalled as exc:
+            raise self._stalled(exc) from None
         finally:
-            self.seconds_used += time.monotonic() - began
+            self._charge(began)
         if response["ok"]:
             return response.get("value")
         raise _student_error(response.get("error"))
@@ -252,11 +276,7 @@ class StudentSession:
         worker = self._worker
         assert worker is not None
         per_call = timeout or self.limits.call_seconds
-        began = time.monotonic()
-        try:
-            first = worker.send("probe_many", {"probes": probes}, answers=len(probes))
-        finally:
-            self.seconds_used += time.monotonic() - began
+        first = worker.send("probe_many", {"probes": probes}, answers=len(probes))
         results: list[Any] = []
         for offset in range(len(probes)):
             try:
@@ -266,14 +286,17 @@ class StudentSession:
                 return [*results, exc]
             began = time.monotonic()
             self.calls += 1
+            worker.last_clock = None
             try:
                 response = worker.receive(first + offset, limit, "probe")
             except StudentTimeout:  # the worker was killed: the probes after this one never ran
                 return [*results, self._timed_out(limit, per_call)]
+            except MachineStalled as exc:
+                return [*results, self._stalled(exc)]
             except WorkerDied as exc:
                 return [*results, exc]
             finally:
-                self.seconds_used += time.monotonic() - began
+                self._charge(began)
             results.append(_kept(response.get("value"), budget) if response["ok"]
                            else _student_error(response.get("error")))
         try:
@@ -281,6 +304,17 @@ class StudentSession:
         except WorkerDied as exc:  # the extra came with the last probe: that probe broke the protocol
             results[-1] = exc
         return results
+
+    def _charge(self, began: float) -> None:
+        """Charge the call that began at `began` to the grading's budget (its worker's own time)."""
+        worker = self._worker
+        clock = worker.last_clock if worker is not None else None
+        self.budget.charge(clock, time.monotonic() - began, self._meter)
+
+    def _stalled(self, exc: MachineStalled) -> MachineStalled:
+        """A wait the machine held up: recorded in the budget (grader.grading redoes the check)."""
+        self.budget.stalls.append(exc.message)
+        return exc
 
     def _timed_out(self, limit: float, per_call: float) -> StudentTimeout:
         """The timeout of a call given `limit` seconds, in words: the per-call limit, or the submission's
@@ -304,13 +338,20 @@ class StudentSession:
         return find_stuck(worker.stack_dump, folder, self.spliced_dir, main_thread)
 
     def _budget_left(self) -> float:
-        left = self.limits.total_seconds - self.seconds_used
+        left = self.budget.left()
         if left <= 0:
             raise StudentTimeout(f"the submission used up its total time of {self.limits.total_seconds:g} s")
+        if self.budget.wall >= self.budget.total_wall_seconds:
+            raise self._stalled(MachineStalled(
+                f"the grading's calls took {self.budget.wall:.0f} s of wall time, more than the "
+                f"{self.budget.total_wall_seconds:g} s bound, while the code used {self.budget.used:.1f} s"))
         return left
 
     def _retire(self) -> None:
         worker, self._worker = self._worker, None
+        if self._meter is not None:  # what it used since the last charge, read before it is killed
+            self.budget.cpu += 0.0 if self._meter.blind else self._meter.settle()
+            self._meter = None
         if worker is not None:
             worker.close()
             self._outputs.append(CappedText(worker.output.text()))

@@ -6,6 +6,7 @@
 ``invalid``  a result with status invalid                 ``garbage`` a reply that is not a result
 ``leak F``   copy the submission to a temporary folder (its path written to F), then hang
 ``flood N``  a result whose messages, details and report hold N bytes of hostile text
+``under_load`` graded, but the machine kept one check from a verdict (grader.under_load)
 """
 
 from __future__ import annotations
@@ -75,6 +76,11 @@ def fake_grade(task: dict) -> dict:
             check["message"] = blob
             check["details"] = {"values": list(range(size // 8)), "text": blob}
         return {"result": result, "html": f"<p>{blob}</p>"}
+    if word == "under_load":
+        result = result_for(task, 4.0)
+        result["checks"][1].update(status="error", points=0.0, message="graded under load: regrade: ...")
+        result["under_load"] = {"regrade": True, "checks": [result["checks"][1]["id"]], "message": "..."}
+        return {"result": result, "html": "<p>under load</p>"}
     if word == "invalid":
         result = result_for(task, 0.0)
         result.update(status="invalid", checks=[], score=0.0, message="go_to_goal.py line 3: invalid syntax")

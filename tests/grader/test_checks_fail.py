@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 from mistakes import DATA, read_mistake
+from verdict_diff import differences
 from verdict_matrix import SNAPSHOT
 from wrong_submissions import ROOT, build, week_of
 
@@ -96,12 +97,13 @@ NOT_SAID = {
 @pytest.mark.parametrize("name", sorted(EXPECTED_FAILURES))
 def test_wrong_version_loses_exactly_its_checks(name: str, tmp_path: Path) -> None:
     result = grade_submission(week_of(name), build(name, tmp_path), seed=2014, hidden=True)
-    assert result["status"] == "graded"
-    assert _verdicts(result) == VERDICTS[name]
-    assert _failed(result) == EXPECTED_FAILURES[name]
+    # a failure prints the whole verdict and the message of each check that differs (verdict_diff)
+    assert result["status"] == "graded", differences(result, VERDICTS[name]) or result.get("message")
+    assert _verdicts(result) == VERDICTS[name], differences(result, VERDICTS[name])
+    assert _failed(result) == EXPECTED_FAILURES[name], differences(result, VERDICTS[name])
     visible = [c for c in result["checks"] if c["visibility"] != "hidden"]
     lost = {c["id"] for c in visible if c["points"] < c["max_points"]}
-    assert lost == EXPECTED_FAILURES[name]
+    assert lost == EXPECTED_FAILURES[name], differences(result, VERDICTS[name])
     checks = {c["id"]: c for c in result["checks"]}
     for check_id, words in MESSAGES.get(name, {}).items():
         assert words in checks[check_id]["message"], checks[check_id]["message"]
@@ -122,16 +124,17 @@ def test_wrong_version_loses_exactly_its_checks(name: str, tmp_path: Path) -> No
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_solutions_score_full_marks_with_hidden_checks(week: int, seed: int) -> None:
     result = grade_submission(week, ROOT / "solutions" / f"week{week}", seed=seed, hidden=True)
-    assert result["status"] == "graded"
-    failures = [c["message"] for c in result["checks"] if c["status"] != "passed"]
-    assert result["score"] == result["max_score"], failures
+    full = {c["id"]: ["passed", round(c["max_points"], 9)] for c in result["checks"]}
+    assert result["status"] == "graded", differences(result, full) or result.get("message")
+    assert result["score"] == result["max_score"], differences(result, full)
 
 
 @pytest.mark.parametrize("week", [w.number for w in all_weeks() if w.blocks])
 def test_untouched_stubs_score_zero(week: int) -> None:
     result = grade_submission(week, ROOT / "assignments" / f"week{week}", seed=2014, hidden=True)
-    assert result["status"] == "graded"
-    assert _verdicts(result) == VERDICTS[f"assignments/week{week}"]
+    expected = VERDICTS[f"assignments/week{week}"]
+    assert result["status"] == "graded", differences(result, expected) or result.get("message")
+    assert _verdicts(result) == expected, differences(result, expected)
     assert result["score"] == 0
     assert all(c["status"] != "passed" for c in result["checks"])
 

@@ -53,8 +53,9 @@ def test_the_timeout_names_the_file_line_and_method_where_the_code_was_stuck(ope
 
 def test_a_worker_that_takes_the_dump_signal_late_is_still_located(open_session):
     """On a loaded machine a spinning worker may get the CPU (and so take the dump signal) only well after
-    the deadline. Here it blocks the signal until 0.6 s after the deadline: the grader waits for the signal
-    to be taken (up to DUMP_PENDING_SECONDS, 2 s), not a fixed 0.25 s from sending it, which lost this."""
+    the deadline. Here it blocks the signal until 0.6 s of CPU time after the deadline: the grader waits for
+    the signal to be taken (up to DUMP_PENDING_SECONDS, 2 s of the worker's own time), not a fixed 0.25 s
+    from sending it, which lost this."""
     session = open_session("stuck")
     exc = timeout_of(session, how="late", seconds=STUCK_SECONDS + 0.6)
     assert (exc.file, exc.line, exc.function) == ("differential_drive.py", marked_line("stuck", "late"),

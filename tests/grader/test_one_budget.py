@@ -1,0 +1,71 @@
+"""One time budget per grading (issue 30, item 2): the second worker weeks 5-7 open for earlier weeks'
+blocks (grader.earlier) charges the grading's one TimeBudget, and the result's `time_budget` counts the
+calls and the time of both; the kept wrong version (tests/data/load_wrong/fresh_budget.py, a fresh budget
+per session, as before) is caught."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from wrong_submissions import build
+
+import grader.grading as grading
+from grader.grading import grade_submission
+from grader.sandbox.limits import Limits
+from grader.sandbox.session import StudentSession
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
+from load_wrong.fresh_budget import open_session_with_a_fresh_budget  # noqa: E402
+
+MISTAKE = "good_week5_week4_u_ao_reversed"  # a week-4 block of its own: the runs get a second worker
+CHECK = "week5.blending.reach_goal"
+
+
+def grade_counting_sessions(tmp_path: Path, monkeypatch, limits: Limits | None = None) -> tuple[dict, list]:
+    made: list[StudentSession] = []
+    real = StudentSession.__init__
+
+    def init(self, *args, **kwargs) -> None:
+        real(self, *args, **kwargs)
+        made.append(self)
+
+    monkeypatch.setattr(StudentSession, "__init__", init)
+    result = grade_submission(5, build(MISTAKE, tmp_path), seed=2014, only=CHECK, limits=limits)
+    return result, made
+
+
+def one_budget(result: dict, sessions: list[StudentSession]) -> list[str]:
+    """What breaks the one-budget rule in this grading (empty: nothing)."""
+    wrong = []
+    if len(sessions) != 2:
+        wrong.append(f"{len(sessions)} sessions, not the two this submission needs")
+    if any(s.budget is not sessions[0].budget for s in sessions):
+        wrong.append("a session with a budget of its own")
+    calls = sum(s.calls for s in sessions)
+    if result["time_budget"]["calls"] != calls:
+        wrong.append(f"the result counts {result['time_budget']['calls']} calls of the {calls} made")
+    return wrong
+
+
+def test_the_second_worker_charges_the_gradings_one_budget(tmp_path: Path, monkeypatch) -> None:
+    result, sessions = grade_counting_sessions(tmp_path, monkeypatch)
+    assert result["checks"][0]["status"] == "passed", result["checks"][0]["message"]
+    assert one_budget(result, sessions) == []
+    assert sessions[1].calls > 0 and result["time_budget"]["total_seconds"] == Limits().total_seconds
+
+
+def test_the_wrong_version_with_a_fresh_budget_per_session_is_caught(tmp_path: Path, monkeypatch) -> None:
+    monkeypatch.setattr(grading, "_open_session", open_session_with_a_fresh_budget)
+    result, sessions = grade_counting_sessions(tmp_path, monkeypatch)
+    assert "a session with a budget of its own" in one_budget(result, sessions)
+
+
+def test_the_total_binds_the_runs_on_the_second_worker(tmp_path: Path, monkeypatch) -> None:
+    """With almost nothing to spend, the runs on the second worker end on the grading's total."""
+    result, sessions = grade_counting_sessions(tmp_path, monkeypatch, Limits(total_seconds=0.05))
+    check = result["checks"][0]
+    print(check["message"])
+    assert check["status"] == "timeout" and check["points"] == 0
+    assert "the submission used up its total time of 0.05 s" in check["message"]
+    assert one_budget(result, sessions) == [] and sessions[1].calls > 0
