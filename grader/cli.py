@@ -5,7 +5,8 @@
     grade week2 --check week2.uni_to_diff.round_trip --case 'v=0.1,w=-2.0'   # replay one failing case
     grade week3 --solutions --hidden # the reference solutions, with the instructor's hidden checks
     grade all                        # every week
-    grade week3 --batch submissions/ --jobs 4 --out graded/
+    grade week3 --batch submissions/ --jobs 4 --out graded/   # official: hidden checks, secret seed
+    grade week3 path/to/alice --hidden --seed graded/          # one student with that batch's hidden set
     grade handout week3 --out release/   # and: grade package gradescope|prairielearn weekN, grade selfcheck
 
 Exit status: 0 every check passed, 1 some check did not, 2 the command itself could not run.
@@ -49,10 +50,13 @@ def _parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--json", dest="json_file", default=None, help="also write the result JSON to this file")
     p.add_argument(
-        "--seed", type=int, default=None,
-        help=f"fixes every random choice (default {DEFAULT_SEED}; with --batch a secret one kept in --out)"
+        "--seed", default=None, metavar="N|FOLDER",
+        help=f"fixes every random choice (default {DEFAULT_SEED}; with --batch a secret one kept in --out); "
+             "a batch output folder or its .seed file means that batch's seed",
     )
-    p.add_argument("--hidden", action="store_true", help="also run the hidden checks (official grading)")
+    p.add_argument("--hidden", action="store_true",
+                   help="also run the hidden checks (official grading; a --batch always does, unless "
+                        "--visible-only)")
     p.add_argument("--check", default=None, help="run only this check id, e.g. week3.pid.integral")
     p.add_argument("--case", default=None, help="with --check: replay one case, e.g. 'v=0.1,w=-2.0'")
     p.add_argument(
@@ -61,8 +65,15 @@ def _parser() -> argparse.ArgumentParser:
         choices=("auto", "bwrap", "subprocess"),
         help="how student code is isolated (default: bubblewrap when it works)",
     )
-    batch = p.add_argument_group("batch grading (one sub-folder or .zip per student)")
+    batch = p.add_argument_group("batch grading (official: hidden checks and the output folder's secret "
+                                 "seed)")
     batch.add_argument("--batch", default=None, metavar="DIR", help="grade every submission in DIR")
+    batch.add_argument("--visible-only", action="store_true",
+                       help="grade the batch with the visible checks only (not official grades)")
+    batch.add_argument("--only", default=None, metavar="ID[,ID...]",
+                       help="regrade these students, even when unchanged, and no one else")
+    batch.add_argument("--canvas-assignment", default=None, metavar="TITLE",
+                       help='the Canvas gradebook column of canvas_import.csv, e.g. "Week 3 (4411)"')
     batch.add_argument(
         "--jobs", type=int, default=None, help="submissions graded at once (default: the number of cores)"
     )
@@ -156,9 +167,16 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         weeks = list(week_numbers()) if args.week.lower() == "all" else [_week(args.week)]
+        if args.seed is not None:
+            from grader.batch.seed import parse_seed
+
+            args.seed = parse_seed(args.seed)
+        if args.visible_only and not args.batch:
+            raise ValueError("--visible-only is for --batch (a single grading runs the visible checks "
+                             "unless --hidden)")
         if args.case and not args.check:
             raise ValueError("--case needs --check ID (the check whose case you replay)")
-        if args.hidden:
+        if args.hidden or (args.batch and not args.visible_only):
             from grader.hidden import missing_hidden_set
 
             missing_hidden_set(weeks)  # a student install: say so, rather than show the checks as errors

@@ -16,7 +16,7 @@ import os
 import secrets
 from collections.abc import Iterator
 from pathlib import Path
-from typing import TextIO
+from typing import BinaryIO, TextIO
 
 from simiam import safe_write
 
@@ -34,6 +34,19 @@ def write_atomic(path: Path, text: str, mode: int | None = None) -> None:
     A lone surrogate (a student's non-UTF-8 file name, or text their code sent) is written as ``?``
     rather than failing the write: nothing a student sends can stop a file from being written."""
     safe_write.write_text(path, text, errors="replace", mode=mode, fsync=True)
+
+
+def write_bytes_atomic(path: Path, data: bytes, mode: int | None = None) -> None:
+    """Write ``data`` (a zip of feedback files) to ``path`` as :func:`write_atomic` writes text."""
+    safe_write.write_bytes(path, data, mode=mode, fsync=True)
+
+
+@contextlib.contextmanager
+def replacing(path: Path) -> Iterator[BinaryIO]:
+    """A binary stream whose bytes replace ``path`` atomically when the block ends (nothing is left if it
+    raises): a zip of feedback files written as it is built, never whole in memory."""
+    with safe_write.replacing(path, fsync=True) as stream:
+        yield stream
 
 
 def write_json(path: Path, value: object, mode: int | None = None) -> None:
