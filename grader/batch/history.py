@@ -2,8 +2,8 @@
 
 A student's result is replaced when they are graded again (a new submission, grader, seed or hidden set,
 a late policy, ``--only``, ``--force``). The result it replaces is first copied to
-``history/<stem>/<timing.graded_at>.json`` (the per-student HTML is not kept: it is rebuilt from the JSON's data
-only by grading again, and at ~0.6 MB a page it would double the folder for every regrade). The new
+``history/<stem>/<timing.graded_at>.json`` (the per-student HTML is not kept: at ~0.6 MB a page it would
+double the folder at every regrade, and the JSON holds every score, check and message). The new
 result records ``batch.change``: the score and status before and after and why they were graded again,
 which ``batch.json`` and the summary list for the students whose score or status changed.
 """

@@ -118,6 +118,13 @@ rerun the same command to finish.</p>
 {% if not_graded %}<p>Not graded yet: {{ not_graded[:200]|join(", ") }}
 {%- if not_graded|length > 200 %} and {{ not_graded|length - 200 }} more{% endif %}.</p>{% endif %}
 {% endif %}
+{% if changed %}<h2>Changed since last grading</h2>
+<table><tr><th>student</th><th>before</th><th>now</th><th>why graded again</th></tr>
+{% for c in changed %}<tr><td>{{ c.student }}</td>
+<td class="n">{{ "%g"|format(c.before) if c.before is not none else "" }} {{ c.status_before }}</td>
+<td class="n">{{ "%g"|format(c.after) if c.after is not none else "" }} {{ c.status_after }}</td>
+<td>{{ c.reasons|join(", ") }}</td></tr>
+{% endfor %}</table>{% endif %}
 <h2>Score distribution (graded submissions)</h2>
 {{ histogram }}
 <h2>Checks</h2>
@@ -168,7 +175,7 @@ def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) ->
         mean=sum(graded) / len(graded) if graded else None, max_score=max_score,
         histogram=histogram_svg(graded, max_score or 1.0, title="Scores of graded submissions"),
         pass_rates=pass_rate_svg([(c["id"], c["pass_rate"]) for c in stats]) if stats else "",
-        checks=stats, students=students)
+        checks=stats, students=students, changed=meta.get("changed") or [])
 
 
 def write_summary(out: Path, results: dict[str, dict], stems: dict[str, str], meta: dict) -> None:
