@@ -179,7 +179,14 @@ def main(argv: list[str] | None = None) -> int:
         if args.hidden or (args.batch and not args.visible_only):
             from grader.hidden import missing_hidden_set
 
-            missing_hidden_set(weeks)  # a student install: say so, rather than show the checks as errors
+            try:
+                missing_hidden_set(weeks)  # a student install: say so, rather than show the checks as errors
+            except ValueError as exc:
+                if args.batch:
+                    raise ValueError(f"{exc} A batch is official grading, which runs them; "
+                                     "--visible-only grades the class without them (not official "
+                                     "grades).") from None
+                raise
         if args.batch:
             if len(weeks) != 1:
                 raise ValueError("--batch grades one week at a time")

@@ -132,8 +132,9 @@ def parse_week(value: object) -> int:
 
 
 def main(args: argparse.Namespace) -> int:
-    """Entry point behind ``grade weekN --batch DIR``. Exit status: 0 every submission graded, 1 some
-    invalid, timed out or crashed, 2 the batch could not run, 130 interrupted (rerun to resume)."""
+    """Entry point behind ``grade weekN --batch DIR``. Exit status: 0 every submission graded (with
+    ``--only``: every named one), 1 some invalid, timed out or crashed, 2 the batch could not run, 130
+    interrupted (rerun to resume)."""
     def stop(_signum: int, _frame: Any) -> None:
         raise KeyboardInterrupt
     try:
@@ -152,6 +153,9 @@ def main(args: argparse.Namespace) -> int:
         return 2
     if report["interrupted"]:
         return 130
+    if options.only:        # what was asked: every named student graded
+        named = [report["per_student"].get(s, {}).get("status") for s in options.only]
+        return 0 if all(status == "graded" for status in named) else 1
     return 0 if report["counts"]["graded"] == report["students"] else 1
 
 
