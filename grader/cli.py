@@ -7,6 +7,8 @@
     grade all                        # every week
     grade week3 --batch submissions/ --jobs 4 --out graded/   # official: hidden checks, secret seed
     grade week3 path/to/alice --hidden --seed graded/          # one student with that batch's hidden set
+    grade week3 --batch CS101-HW3_submissions.zip --roster gradebook.csv --deadline 2026-03-01T23:59-05:00 \
+        --late-penalty 10%/day --late-cap 50%   # a Canvas, Moodle or Gradescope download as it comes
     grade handout week3 --out release/   # and: grade package gradescope|prairielearn weekN, grade selfcheck
 
 Exit status: 0 every check passed, 1 some check did not, 2 the command itself could not run.
@@ -67,7 +69,11 @@ def _parser() -> argparse.ArgumentParser:
     )
     batch = p.add_argument_group("batch grading (official: hidden checks and the output folder's secret "
                                  "seed)")
-    batch.add_argument("--batch", default=None, metavar="DIR", help="grade every submission in DIR")
+    batch.add_argument("--batch", default=None, metavar="SOURCE",
+                       help="grade every submission in SOURCE: a folder with one sub-folder or .zip per "
+                            "student id, or Canvas's submissions zip, Moodle's download or Gradescope's "
+                            "export (the .zip as downloaded or its extracted folder), recognised by its"
+                            " layout")
     batch.add_argument("--visible-only", action="store_true",
                        help="grade the batch with the visible checks only (not official grades)")
     batch.add_argument("--only", default=None, metavar="ID[,ID...]",
@@ -84,6 +90,30 @@ def _parser() -> argparse.ArgumentParser:
     batch.add_argument("--quiet", action="store_true", help="no progress bar")
     batch.add_argument("--executor", default="local", choices=("local", "dask"))
     batch.add_argument("--scheduler", default=None, help="Dask scheduler address (with --executor dask)")
+    late = p.add_argument_group("roster and late work (with --batch; see docs/batch.md)")
+    late.add_argument("--roster", default=None, metavar="CSV",
+                      help="the class list: id, name, login/email, section, extension columns (a Canvas "
+                           "gradebook export, Moodle's grading worksheet, Gradescope's roster work as they "
+                           "come); names who did not submit")
+    late.add_argument("--deadline", default=None, metavar="ISO",
+                      help="the due date, ISO 8601 with its offset (2026-03-01T23:59-05:00), or with "
+                           "--timezone")
+    late.add_argument("--late-penalty", default=None, metavar="RATE",
+                      help="percent of the points possible per day or hour late, rounded up: 10%%/day, "
+                           "2%%/hour")
+    late.add_argument("--late-cap", default=None, metavar="PCT", help="the penalty is at most this: 50%%")
+    late.add_argument("--late-floor", default=None, metavar="PCT",
+                      help="as Canvas's lowest possible grade: lateness never takes a score below this share")
+    late.add_argument("--grace", default=None, metavar="DURATION",
+                      help="this long past the deadline is not late: 15m, 1h (a bare number is minutes)")
+    late.add_argument("--times", default=None, metavar="CSV",
+                      help="submission times where the download has none (Canvas, Moodle): id and "
+                           "submitted_at columns, or Moodle's grading worksheet")
+    late.add_argument("--file-times", action="store_true",
+                      help="use the files' own times as submission times where nothing else gives one (only "
+                           "when you know they are: Canvas's download dates its entries when it was zipped)")
+    late.add_argument("--timezone", default=None, metavar="ZONE",
+                      help="time zone of dates given without one (Moodle's worksheet): Europe/London")
     return p
 
 

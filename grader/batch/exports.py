@@ -52,22 +52,30 @@ def safe_cell(value: object) -> object:
     return value
 
 
-def gradebook_csv(results: dict[str, dict]) -> str:
-    """One row per student: id, one column of points per check, total, max, status, message."""
+def gradebook_csv(results: dict[str, dict], missing: list[str] | tuple[str, ...] = ()) -> str:
+    """One row per student: id, one column of points per check, total (after any late penalty), max,
+    status, message, late_penalty and score_before_penalty (blank without a late policy); a ``held``
+    student's total is blank, and each roster student in ``missing`` has a row with a blank total."""
     ids = check_ids(results)
     fallback_max = class_max_score(results)
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(["student", *ids, "total", "max", "status", "message"])
+    writer.writerow(["student", *ids, "total", "max", "status", "message", "late_penalty",
+                     "score_before_penalty"])
     for sid in sorted(results):
         result = results[sid]
         points = {c.get("id"): c.get("points") for c in result.get("checks") or [] if isinstance(c, dict)}
         max_score = result.get("max_score")
         if not isinstance(max_score, (int, float)):
             max_score = fallback_max
+        late = lt if isinstance(lt := result.get("late"), dict) else {}
         row = [sid, *[_number(points.get(cid)) for cid in ids], _number(result.get("score", 0.0)),
-               _number(max_score), result.get("status", ""), _one_line(result.get("message", ""))]
+               _number(max_score), result.get("status", ""), _one_line(result.get("message", "")),
+               _number(late.get("penalty_points")), _number(late.get("score_before"))]
         writer.writerow([safe_cell(cell) for cell in row])
+    for sid in sorted(set(missing) - set(results)):
+        writer.writerow([safe_cell(c) for c in [sid, *[""] * len(ids), "", _number(fallback_max), "missing",
+                                                 "on the roster, no submission", "", ""]])
     return buffer.getvalue()
 
 
@@ -114,16 +122,22 @@ def gradescope_result(result: dict) -> dict:
     return export
 
 
-def write_exports(out: Path, results: dict[str, dict], stems: dict[str, str], *, week: int | None = None,
-                  title: str = DEFAULT_CANVAS_TITLE, roster: list[Identity] | None = None,
-                  missing: list[str] | None = None) -> dict:
+def write_exports(out: Path, results: dict[str, dict], stems: dict[str, str], meta: dict | None = None, *,
+                  week: int | None = None, title: str = DEFAULT_CANVAS_TITLE,
+                  roster: list[Identity] | None = None, missing: list[str] | None = None) -> dict:
     """Write ``gradebook.csv``, ``gradescope/<id>/results.json`` for every student in ``results``, and the
     Canvas and Moodle files (with a blank row for each roster student in ``missing``); returns what the
-    platform files left blank or out, and why, for ``batch.json``.
+    platform files left blank or out, and why, for ``batch.json``. ``roster`` and ``missing`` default to
+    the run's ``meta["roster"]`` (Identity JSON) and ``meta["missing"]``.
 
     The Gradescope files are written by a few threads: each write waits for its fsync, and at the end of
     a batch the cores have nothing else to do (400 students: 5.3-6.7 s one by one, 1.9-3.4 s so)."""
-    write_atomic(out / "gradebook.csv", gradebook_csv(results))
+    meta = meta or {}
+    if missing is None:
+        missing = [m for m in meta.get("missing") or [] if isinstance(m, str)]
+    if roster is None:
+        roster = [i for i in map(Identity.from_json, meta.get("roster") or []) if i is not None]
+    write_atomic(out / "gradebook.csv", gradebook_csv(results, missing))
     max_score = class_max_score(results)
     rows = class_rows(results, max_score, roster, missing)
     pages = {sid: out / f"{stems[sid]}.html" for sid, r in results.items() if r.get("status") in WITH_REPORT}

@@ -14,6 +14,9 @@ from grader.report.html import STATIC_PAGE_CSP, page_text
 
 _ADVICE = {
     "invalid": "The submission could not be graded as it is. Fix what the message says and submit again.",
+    "held": "Your submission is being sorted out by your instructor (a question about the files as the "
+            "course platform handed them over, not about your work). You need not do anything; this page "
+            "will show your grade once it is sorted out.",
     "timeout": "Grading did not finish within the time budget. Your instructor will look into it.",
     "crashed": "The grader itself failed on this submission. Your instructor will look into it.",
 }
@@ -48,4 +51,6 @@ def fallback_page(student_id: str, result: dict) -> str:
     return _env.from_string(_TEMPLATE).render(
         csp=STATIC_PAGE_CSP, student=student_id, week=str(result.get("week")), status=status,
         score=str(result.get("score")), max_score=str(result.get("max_score")),
-        message=str(result.get("message") or ""), advice=_ADVICE.get(status, ""), checks=checks)
+        # a held student's message is the instructor's (it may name the export's other entries)
+        message="" if status == "held" else str(result.get("message") or ""), advice=_ADVICE.get(status, ""),
+        checks=checks)

@@ -14,7 +14,8 @@ from typing import TextIO
 from grader.inside.shorten import keep_head
 from grader.untrusted import printable
 
-COUNTED = ("graded", "invalid", "timeout", "crashed", "skipped")
+COUNTED = ("graded", "invalid", "held", "timeout", "crashed", "skipped")
+QUIET_AT_ZERO = ("held", "skipped")     # named only once some student has them
 MESSAGE_CHARS = 400  # a student's message in the log: the rest is in their report
 
 
@@ -59,7 +60,7 @@ class Progress:
         pct = 100 * self.finished // self.total if self.total else 100
         parts = [f"[{self.finished}/{self.total}] {pct:3d}%"]
         parts.append(" ".join(f"{name} {self.counts[name]}" for name in COUNTED
-                              if self.counts[name] or name != "skipped"))
+                              if self.counts[name] or name not in QUIET_AT_ZERO))
         if worked and elapsed > 0:
             rate = worked / elapsed
             parts.append(f"{rate * 60:.1f}/min")

@@ -2,7 +2,8 @@
 
 The run, in order:
 
-1. list the students in DIR (one sub-folder or ``.zip`` each, named by student id);
+1. list the students in DIR: one sub-folder or ``.zip`` each, named by student id, or a course platform's
+   download as it comes (grader/batch/intake.py), with the roster and late policy laid over them;
 2. for each student, lazily as grading slots free up: read the files safely, hash them, and skip the
    student if their stored result carries the same cache key (submission, grader, seed, hidden set;
    ``--only`` regrades the students it names, and only them); a refused submission gets ``invalid`` at
@@ -47,10 +48,12 @@ from grader.batch.executors import DaskExecutor, ExecutorError, LocalExecutor
 from grader.batch.exports import DEFAULT_CANVAS_TITLE, write_exports
 from grader.batch.fallback_page import fallback_page
 from grader.batch.identity import Identity
+from grader.batch.intake import ClassList, IntakeError, IntakeOptions, read_class
+from grader.batch.late_apply import settle_late, with_late_section
 from grader.batch.names import shown, student_stem
 from grader.batch.progress import Progress
 from grader.batch.store import OutputBusy, exclusive, folder_seed, read_json, write_atomic, write_json
-from grader.batch.submissions import Student, Submission, discover, pack, read_submission
+from grader.batch.submissions import Student, Submission, pack, read_submission
 from grader.batch.summary import write_summary
 from grader.hidden.identity import hidden_set_identity
 from grader.result_size import bound_html, bound_result
@@ -60,7 +63,8 @@ from simiam.course.weeks import get_week, week_numbers
 # grade_submission bounds each student check with its own timeouts; this budget only catches a grading
 # process that hangs or thrashes as a whole.
 DEFAULT_BUDGET_S = 300.0
-STATUSES = ("graded", "invalid", "timeout", "crashed")
+STATUSES = ("graded", "invalid", "held", "timeout", "crashed")
+MAX_PAGE_BYTES = 4 * 1024 * 1024     # a stored page read back to change its late section
 
 
 class BatchError(Exception):
@@ -93,6 +97,7 @@ class BatchOptions:
     scheduler: str | None = None
     sandbox: str = "auto"
     budget_s: float = DEFAULT_BUDGET_S
+    intake: IntakeOptions = field(default_factory=IntakeOptions)   # roster, times, late policy
 
     @classmethod
     def from_args(cls, args: argparse.Namespace) -> BatchOptions:
@@ -120,7 +125,8 @@ class BatchOptions:
                    canvas_assignment=given.get("canvas_assignment") or DEFAULT_CANVAS_TITLE,
                    executor=given.get("executor") or "local", scheduler=given.get("scheduler"),
                    sandbox=given.get("sandbox") or "auto",
-                   budget_s=float(given.get("timeout") or DEFAULT_BUDGET_S))
+                   budget_s=float(given.get("timeout") or DEFAULT_BUDGET_S),
+                   intake=IntakeOptions.from_args(given))
 
 
 def parse_week(value: object) -> int:
@@ -175,24 +181,27 @@ def run_batch(options: BatchOptions, grade_fn: Callable[[dict], dict] | str | No
     ``grade_fn(task) -> {"result": ..., "html": ...}`` defaults to :func:`grader.batch.task.grade_task`;
     tests inject fakes. Raises BatchError if the batch cannot start.
     """
-    if not options.batch_dir.is_dir():
-        raise BatchError(f"{options.batch_dir} is not a folder of submissions")
     if options.week not in week_numbers():
         raise BatchError(f"there is no week {options.week}; the course has weeks "
                          f"{', '.join(map(str, week_numbers()))}")
     out = options.out.resolve()
     if out == options.batch_dir.resolve():
         raise BatchError("--out must not be the class folder itself; choose another folder")
-    students = [s for s in discover(options.batch_dir) if not _holds(s.path, out)]
+    try:
+        klass = read_class(options.batch_dir, options.intake, out)
+    except IntakeError as exc:
+        raise BatchError(str(exc)) from None
+    students = klass.students
     if not students:
-        raise BatchError(f"{options.batch_dir} has no student folders or .zip files")
+        raise BatchError(f"{options.batch_dir} has no student folders or .zip files"
+                         if klass.layout == "folder" else f"{options.batch_dir}: no submissions found")
     stems = _stems(students)
     _check_only(options.only, students)
     executor = executor if executor is not None else make_executor(options)
     try:
         with exclusive(out):
             options = dataclasses.replace(options, seed=folder_seed(out, options.seed))
-            run = _Run(options, out, students, stems, stream)
+            run = _Run(options, out, klass, stems, stream)
             try:
                 executor.run(grade_fn or "grader.batch.task:grade_task", run.plan(), run.finish)
             except KeyboardInterrupt:
@@ -239,18 +248,13 @@ def _check_only(only: tuple[str, ...], students: list[Student]) -> None:
                      f"{'; '.join(lines)}{more}; nothing was graded")
 
 
-def _holds(path: Path, out: Path) -> bool:
-    """True if ``path`` is the output folder or contains it (an --out inside the class folder)."""
-    path = path.resolve()
-    return path == out or path in out.parents
-
-
 class _Run:
     """State of one batch run: what is pending, what finished, and the progress line."""
 
-    def __init__(self, options: BatchOptions, out: Path, students: list[Student], stems: dict[str, str],
+    def __init__(self, options: BatchOptions, out: Path, klass: ClassList, stems: dict[str, str],
                  stream: TextIO | None):
-        self.options, self.out, self.students, self.stems = options, out, students, stems
+        self.options, self.out, self.students, self.stems = options, out, klass.students, stems
+        self.klass = klass
         assert options.seed is not None, "run_batch resolves the seed (folder_seed) before a run starts"
         self.seed: int = options.seed
         self.grader = grader_fingerprint()
@@ -258,8 +262,9 @@ class _Run:
         # edited hidden set regrades everyone; results keep it without the variants (no hidden goal in a
         # file a student may be handed), batch.json with them
         self.hidden_set = hidden_set_identity(options.week, self.seed) if options.hidden else None
-        self.identities = {s.id: _identity(s) for s in students}
-        self.progress = Progress(len(students), stream=stream, quiet=options.quiet)
+        self.progress = Progress(len(self.students), stream=stream, quiet=options.quiet)
+        for line in [] if options.quiet else klass.messages():
+            self.progress.message(line)
         self.pending: dict[str, tuple[Submission, str]] = {}
         self.record: dict[str, dict] = {}
         self.interrupted = False
@@ -284,13 +289,20 @@ class _Run:
             if (not self.options.force and not only and is_fresh(stored, key)
                     and (self.out / f"{stem}.html").is_file()):
                 assert stored is not None
-                self.record[student.id] = {"status": stored["status"], "cached": True}
-                self.progress.done("skipped")
-                continue
+                if self._restate(student, stem, stored):
+                    self.record[student.id] = {"status": stored["status"], "cached": True}
+                    self.progress.done("skipped")
+                    continue
             self.pending[student.id] = (submission, key)
-            task = {"student": student.id, "display": shown(student.path.name), "week": self.options.week,
+            display = shown(student.path.name) if student.kind in ("folder", "zip", "link", "clash") \
+                else f"{shown(student.path.name)}: {shown(student.id)}"     # one of a platform's download
+            task = {"student": student.id, "display": display, "week": self.options.week,
                     "seed": self.seed, "hidden": self.options.hidden, "sandbox": self.options.sandbox,
                     "grader": self.grader, "check_grader": self.options.executor == "dask"}
+            if submission.held is not None:
+                self.finish(task, {"status": "held", "value": None, "message": submission.held,
+                                   "seconds": 0.0})
+                continue
             if submission.refused is not None:
                 self.finish(task, {"status": "invalid", "value": None, "message": submission.refused,
                                    "seconds": 0.0})
@@ -299,6 +311,33 @@ class _Run:
             if submission.notices:
                 task["notices"] = submission.notices
             yield task
+
+    def _identity(self, student: Student) -> Identity:
+        return student.identity or Identity(id=student.id)
+
+    def _restate(self, student: Student, stem: str, stored: dict) -> bool:
+        """Bring a reused result up to this run's identity and late policy without grading it again (its
+        page's late section too); False when it must be graded again (its numbers cannot be trusted)."""
+        identity = self._identity(student)
+        changed = settle_late(stored, identity, self.klass.policy, self.klass.extensions.get(student.id))
+        if changed is None:
+            return False
+        batch = stored["batch"]
+        if not changed and batch.get("identity") == identity.to_json():
+            return True
+        if changed:
+            page = self.out / f"{stem}.html"
+            try:
+                with page.open("rb") as stream:
+                    text = stream.read(MAX_PAGE_BYTES + 1).decode("utf-8", "replace")
+            except OSError:
+                return False
+            if len(text) > MAX_PAGE_BYTES:
+                return False
+            write_atomic(page, with_late_section(text, stored.get("late")))
+        batch["identity"] = identity.to_json()
+        write_json(self.out / f"{stem}.json", stored)
+        return True
 
     def longest_first(self) -> list[Student]:
         """The students in the order to grade them: the class folder's order, except that those whose
@@ -324,11 +363,17 @@ class _Run:
         submission, key = self.pending.pop(sid)
         result, html = self._settle(task, outcome)
         result["submission"] = task["display"]
+        if submission.notices and not result.get("notices"):   # not graded: what the intake noticed
+            result["notices"] = list(submission.notices)
+        identity = self._identity(submission.student)
         result["batch"] = {"student": sid, "cache_key": key, "submission_sha256": submission.sha256,
-                           "grader": self.grader, "root": submission.root,
-                           "identity": self.identities[sid].to_json(),
+                           "grader": self.grader, "root": submission.root, "identity": identity.to_json(),
                            "hidden_set": None if self.hidden_set is None else
                            {k: v for k, v in self.hidden_set.items() if k != "variants"}}
+        if result.get("status") == "held":
+            result["score"] = None          # not graded, not charged: exports leave the grade blank
+        elif settle_late(result, identity, self.klass.policy, self.klass.extensions.get(sid)) is None:
+            result.update(status="crashed", score=0.0, message="the grader returned a score out of range")
         if outcome.get("traceback"):
             result["batch"]["traceback"] = outcome["traceback"]
         timing = tm if isinstance(tm := result.get("timing"), dict) else {}
@@ -344,7 +389,8 @@ class _Run:
         # no result, so their HTML and JSON never come from two different gradings.
         (self.out / f"{stem}.json").unlink(missing_ok=True)
         html = bound_html(html) if isinstance(html, str) else None
-        write_atomic(self.out / f"{stem}.html", html or fallback_page(shown(sid), result))
+        page = html or fallback_page(shown(sid), result)
+        write_atomic(self.out / f"{stem}.html", with_late_section(page, result.get("late")))
         write_json(self.out / f"{stem}.json", result)
         status = result["status"]
         self.record[sid] = {"status": status, "cached": False, "seconds": result["timing"]["batch_seconds"],
@@ -386,18 +432,23 @@ class _Run:
             else:
                 self._supersede(self.stems[student.id])
         stems = {sid: self.stems[sid] for sid in results}
-        exported = write_exports(self.out, results, stems, week=self.options.week,
-                                 title=self.options.canvas_assignment)
         self._prune_gradescope(set(stems.values()))
         not_graded = sorted(shown(s.id) for s in self.students if s.id not in results)
         counts = dict.fromkeys(STATUSES, 0)
         for result in results.values():
             status = result.get("status")
             counts[status if isinstance(status, str) and status in counts else "crashed"] += 1
+        if not counts["held"]:
+            del counts["held"]          # named only when some student is held
         incomplete = len(self.students) - len(results)
+        held = {shown(sid): str(r.get("message") or "")[:300] for sid, r in sorted(results.items())
+                if r.get("status") == "held"}
         meta = {"week": self.options.week, "seed": self.seed, "hidden": self.options.hidden,
                 "grader": self.grader, "incomplete": incomplete, "not_graded": not_graded,
-                "changed": history.changed_rows(results)}
+                "changed": history.changed_rows(results),
+                **self.klass.meta(), "held": sorted(held), "held_reasons": held}
+        exported = write_exports(self.out, results, stems, meta, week=self.options.week,
+                                 title=self.options.canvas_assignment)
         write_summary(self.out, results, stems, meta)
         report = {"format": "simiam-batch/1", **meta, "hidden_set": self.hidden_set,
                   "only": list(self.options.only), "batch_dir": str(self.options.batch_dir.resolve()),
@@ -409,7 +460,10 @@ class _Run:
                   "this_run": {"graded_now": sum(not r["cached"] for r in self.record.values()),
                                "skipped": sum(r["cached"] for r in self.record.values())},
                   "per_student": {sid: {**self.record.get(sid, {}), "status": r.get("status"),
-                                        "score": r.get("score")} for sid, r in sorted(results.items())}}
+                                        "score": r.get("score"),
+                                        **({"late_penalty": r["late"].get("penalty_points")}
+                                           if isinstance(r.get("late"), dict) else {})}
+                                  for sid, r in sorted(results.items())}}
         write_json(self.out / "batch.json", report)
         self._tell(report)
         return report
@@ -459,13 +513,11 @@ class _Run:
         if self.interrupted:
             stream.write(f"interrupted: {report['students'] - report['incomplete']} of {report['students']} "
                          f"students have results; run the same command again to resume\n")
+        for sid, reason in list(report["held_reasons"].items())[:50]:
+            stream.write(f"held (yours to sort out, not graded): {printable(sid)}: {printable(reason)}\n")
+        if report["missing"]:
+            stream.write(f"on the roster with no submission: {len(report['missing'])}\n")
         stream.write(f"week {report['week']}: {counts} ({report['this_run']['skipped']} reused); "
                      f"gradebook {self.out / 'gradebook.csv'}, summary {self.out / 'summary.html'}\n")
         stream.flush()
 
-
-def _identity(student: Student) -> Identity:
-    """Who ``student`` is: what the platform's export said (an ``identity`` the intake attached), else
-    only the student id."""
-    identity = getattr(student, "identity", None)
-    return identity if isinstance(identity, Identity) else Identity(id=student.id)

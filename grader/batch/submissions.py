@@ -14,6 +14,8 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from grader.batch.export_files import Export, read_members
+from grader.batch.identity import Identity
 from grader.batch.names import MAX_DEPTH, check_path, check_paths, check_student_id, shown, undecodable
 from grader.batch.windows_names import leave_out
 from grader.batch.zips import JUNK_PARTS, Limits, SubmissionRefused, is_junk, read_zip
@@ -28,9 +30,15 @@ STUDENT_FILES = frozenset(name for week in all_weeks() for name in week.student_
 class Student:
     """One entry of the class folder."""
 
-    id: str            # the folder name, or the zip name without ``.zip``
+    id: str            # the folder name, or the zip name without ``.zip``; a platform's own id
     path: Path
     kind: str          # "folder" | "zip" | "clash" (both a folder and a zip with this id) | "link"
+    #                    | "export" (files in a platform's download) | "held" (the instructor's to sort out)
+    identity: Identity | None = None
+    members: tuple[tuple[str, str], ...] = ()   # "export": (name in the export, path in the submission)
+    held: str = ""                              # "held": why, for the instructor
+    notices: tuple[str, ...] = ()               # what the student reads about their export entries
+    export: Export | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass
@@ -43,6 +51,7 @@ class Submission:
     refused: str | None = None
     root: str = ""     # the folder inside the zip/folder the files were taken from ("" = top level)
     notices: list[str] = field(default_factory=list)   # what the student is told besides the checks
+    held: str | None = None   # set instead of ``files``: an instructor-side problem (status "held")
 
 
 def discover(batch_dir: Path) -> list[Student]:
@@ -70,10 +79,17 @@ def read_submission(student: Student, limits: Limits | None = None, week: int | 
     """Read and check one student's files; a refusal is recorded, never raised. ``week`` (the batch's)
     picks ``weekN/`` in a submission holding several weeks' folders."""
     limits = limits or Limits()
+    if student.kind == "clash":       # made on the instructor's side: never the student's fault
+        return Submission(student, sha256=_hash_text(f"clash {student.id}"),
+                          held=f"both a folder and a zip are named {shown(student.id)!r}; keep the one "
+                               f"that is the submission and rerun")
+    if student.kind == "held":
+        return Submission(student, sha256=_hash_text(f"held {student.held} {student.members}"),
+                          held=shown(student.held))
+    if student.kind == "export":
+        return _read_export_student(student, limits, week)
     try:
         check_student_id(student.id)
-        if student.kind == "clash":
-            raise SubmissionRefused(f"both a folder and a zip are named {student.id!r}; keep one")
         if student.kind == "link":
             raise SubmissionRefused(f"{student.path.name} is a link; links are not followed "
                                     "(copy the submission into the class folder)")
@@ -97,6 +113,45 @@ def read_submission(student: Student, limits: Limits | None = None, week: int | 
                                         f"{str(exc)[:300]})"))
     return Submission(student, files=files, sha256=content_hash(files, skipped + left_out), root=root,
                       notices=[skipped_note(name) for name in skipped] + left_out)
+
+
+def _read_export_student(student: Student, limits: Limits, week: int | None) -> Submission:
+    """A student whose files are entries of a platform's download; a zip they uploaded is read as their
+    own zip would be (same limits, in memory) and its files placed beside their other files."""
+    assert student.export is not None, "an export student carries its export"
+    listing = "\n".join(f"{name}\x00{rel}" for name, rel in student.members)
+    try:
+        check_student_id(student.id)
+        raw = read_members(student.export, list(student.members), limits)
+        for rel in [r for r in raw if r.lower().endswith(".zip")]:
+            inner = read_zip(raw.pop(rel), limits, label=rel)
+            for path, data in inner.items():
+                if path in raw:
+                    raise SubmissionRefused(f"{rel} holds {path}, and the submission has another {path}")
+                raw[path] = data
+        if sum(map(len, raw.values())) > limits.max_total_bytes or len(raw) > limits.max_files:
+            raise SubmissionRefused(f"the submission is over the limits ({limits.max_files} files, "
+                                    f"{limits.max_total_bytes} bytes)")
+        left_out: list[str] = []
+        raw = leave_out(raw, left_out)
+        check_paths(list(raw))
+        root, files = find_root(raw, week)
+        if not files:
+            raise SubmissionRefused("the submission has no files")
+    except SubmissionRefused as refused:
+        return Submission(student, sha256=_hash_text(f"refused {listing} {refused}"),
+                          refused=shown(str(refused)),
+                          notices=list(student.notices))
+    except Exception as exc:  # noqa: BLE001 - whatever one submission does to the reader is its problem
+        return Submission(student, sha256=_hash_text(f"refused {listing} {type(exc).__name__}"),
+                          refused=shown(f"the submission could not be read ({type(exc).__name__}: "
+                                        f"{str(exc)[:300]})"))
+    return Submission(student, files=files, sha256=content_hash(files, list(student.notices) + left_out),
+                      root=root, notices=list(student.notices) + left_out)
+
+
+def _hash_text(text: str) -> str:
+    return hashlib.sha256(text.encode("utf-8", "surrogatepass")).hexdigest()
 
 
 def skipped_note(name: str) -> str:

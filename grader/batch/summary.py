@@ -118,6 +118,11 @@ rerun the same command to finish.</p>
 {% if not_graded %}<p>Not graded yet: {{ not_graded[:200]|join(", ") }}
 {%- if not_graded|length > 200 %} and {{ not_graded|length - 200 }} more{% endif %}.</p>{% endif %}
 {% endif %}
+{% if intake %}<div class="intake"><p>Read as {{ intake.layout }}.
+{%- if intake.policy %} Late policy: {{ intake.policy }}.{% endif %}</p>
+{% for title, names in intake.lists %}{% if names %}<p><strong>{{ title }} ({{ names|length }}):</strong>
+{{ names[:200]|join(", ") }}{% if names|length > 200 %} and {{ names|length - 200 }} more{% endif %}</p>
+{% endif %}{% endfor %}</div>{% endif %}
 {% if changed %}<h2>Changed since last grading</h2>
 <table><tr><th>student</th><th>before</th><th>now</th><th>why graded again</th></tr>
 {% for c in changed %}<tr><td>{{ c.student }}</td>
@@ -142,7 +147,8 @@ rerun the same command to finish.</p>
 {% for s in students %}<tr><td><a href="{{ s.href }}">{{ s.id }}</a></td>
 <td class="{{ s.status }}">{{ s.status }}</td>
 <td class="n">{% if s.score is not none %}{{ "%g"|format(s.score) }}
-{%- if max_score %} / {{ "%g"|format(max_score) }}{% endif %}{% endif %}</td>
+{%- if max_score %} / {{ "%g"|format(max_score) }}{% endif %}{% endif %}
+{%- if s.late %} (late: &minus;{{ "%g"|format(s.late) }}){% endif %}</td>
 <td class="replays">{% for g in s.replays %}{{ g.name }}{% for r in g.runs %} <a href="{{ r.href }}"
 title="{{ r.title }}"{% if r.failed %} class="failed"{% endif %}>{{ r.text }}</a>{% endfor %}
 {%- if not loop.last %} · {% endif %}{% endfor %}</td>
@@ -165,7 +171,8 @@ def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) ->
     students = [{"id": sid, "href": quote(f"{stems[sid]}.html"), "status": r.get("status"),
                  "replays": replay_links(r, quote(f"{stems[sid]}.html")),
                  "score": r.get("score") if isinstance(r.get("score"), (int, float)) else None,
-                 "message": shortened(" ".join(str(r.get("message") or "").split()), 300)}
+                 "message": shortened(" ".join(str(r.get("message") or "").split()), 300),
+                 "late": _late_points(r)}
                 for sid, r in sorted(results.items())]
     return _env.from_string(_TEMPLATE).render(
         csp=STATIC_PAGE_CSP, week=meta.get("week"), seed=meta.get("seed"), hidden=meta.get("hidden"),
@@ -175,7 +182,32 @@ def summary_html(results: dict[str, dict], stems: dict[str, str], meta: dict) ->
         mean=sum(graded) / len(graded) if graded else None, max_score=max_score,
         histogram=histogram_svg(graded, max_score or 1.0, title="Scores of graded submissions"),
         pass_rates=pass_rate_svg([(c["id"], c["pass_rate"]) for c in stats]) if stats else "",
-        checks=stats, students=students, changed=meta.get("changed") or [])
+        checks=stats, students=students, intake=_intake(meta),
+        changed=meta.get("changed") or [])
+
+
+def _late_points(result: dict) -> float | None:
+    late = result.get("late")
+    points = late.get("penalty_points") if isinstance(late, dict) else None
+    if isinstance(points, (int, float)) and not isinstance(points, bool) and points > 0:
+        return float(points)
+    return None
+
+
+def _intake(meta: dict) -> dict | None:
+    """What the instructor must hear about the intake (grader/batch/intake.py), None for a plain run."""
+    if "layout_text" not in meta:
+        return None
+    notes = meta.get("intake") or {}
+    reasons = meta.get("held_reasons") or {}
+    return {"layout": meta["layout_text"], "policy": notes.get("late_policy_text") or "",
+            "lists": [("Held: yours to sort out, not graded", [f"{k}: {v}" for k, v in reasons.items()]),
+                      ("On the roster, no submission", meta.get("missing") or []),
+                      ("Not on the roster (graded)", notes.get("not_on_roster") or []),
+                      ("Not placed (not graded)", notes.get("unplaced") or []),
+                      ("Marked late by Canvas, no submission time: give --times",
+                       notes.get("late_without_time") or []),
+                      ("Notes", notes.get("notes") or [])]}
 
 
 def write_summary(out: Path, results: dict[str, dict], stems: dict[str, str], meta: dict) -> None:

@@ -24,6 +24,7 @@ from grader.batch.cache import grader_fingerprint
 from grader.batch.grading_process import overlapped
 from grader.batch.submissions import unpack
 from grader.grading import grade_submission  # at import: a grading process loads it before its first task
+from simiam.course.weeks import get_week
 
 
 class GraderMismatch(RuntimeError):
@@ -43,6 +44,16 @@ def grade_first(task: dict) -> Callable[[], dict]:
         raise GraderMismatch(f"this grading machine runs grader {mine}, the batch expects {expected}; "
                              f"install the same version everywhere")
     week = int(task["week"])
+    course_files = get_week(str(week)).student_files
+    if not any(name in course_files for name in task["files"]):
+        # nothing of the week's to grade: the student sent the wrong files, not a zero-point attempt
+        result = {"week": week, "score": 0.0, "max_score": None, "status": "invalid", "seed": task["seed"],
+                  "hidden": bool(task["hidden"]), "grader_version": expected, "checks": [],
+                  "submission": task.get("display") or task["student"],
+                  "message": f"the submission holds none of week {week}'s files ({', '.join(course_files)}); "
+                             f"it has: {', '.join(sorted(task['files'])[:10])}",
+                  "notices": [n for n in task.get("notices") or [] if isinstance(n, str)]}
+        return functools.partial(lambda r: {"result": r, "html": None}, result)
     with tempfile.TemporaryDirectory(prefix="simiam-batch-") as tmp:
         submission = unpack(task["files"], Path(tmp) / "submission")
         began = time.monotonic()

@@ -16,6 +16,7 @@ Declared sizes can lie, so reading stops at the limit whatever the header says. 
 
 from __future__ import annotations
 
+import io
 import stat
 import zipfile
 import zlib
@@ -63,7 +64,7 @@ def safe_member_path(name: str) -> tuple[str, ...]:
     return parts
 
 
-def _entry_kind(info: zipfile.ZipInfo) -> str:
+def entry_kind(info: zipfile.ZipInfo) -> str:
     """'dir', 'file', or the name of a forbidden special file type (from the Unix mode bits, if any)."""
     if info.is_dir():
         return "dir"
@@ -75,49 +76,55 @@ def _entry_kind(info: zipfile.ZipInfo) -> str:
     return "symlink" if kind == stat.S_IFLNK else "special file"
 
 
-def read_zip(path: Path, limits: Limits | None = None) -> dict[str, bytes]:
-    """Read every regular file of the zip at ``path`` into ``{relative/posix/path: bytes}``.
+def read_zip(path: Path | bytes, limits: Limits | None = None, label: str = "") -> dict[str, bytes]:
+    """Read every regular file of the zip at ``path`` (or in ``path``'s bytes: a zip the student uploaded
+    inside a platform's download) into ``{relative/posix/path: bytes}``.
 
     Raises SubmissionRefused for a broken zip or any entry that breaks the rules in the module docstring.
     Junk entries (``__MACOSX/``, ``.DS_Store``, ``__pycache__``...) are skipped but still path-checked.
     """
     limits = limits or Limits()
+    label = label or (path.name if isinstance(path, Path) else "the zip")
     try:
-        archive = zipfile.ZipFile(path)
+        archive = zipfile.ZipFile(io.BytesIO(path) if isinstance(path, bytes) else path)
     except (zipfile.BadZipFile, OSError, ValueError) as exc:
-        raise SubmissionRefused(f"{path.name} is not a readable zip file ({exc})") from None
+        raise SubmissionRefused(f"{label} is not a readable zip file ({exc})") from None
     files: dict[str, bytes] = {}
     total = 0
     with archive:
         infos = archive.infolist()
         for info in infos:
             parts = safe_member_path(info.filename)
-            kind = _entry_kind(info)
+            kind = entry_kind(info)
             if kind in ("symlink", "special file"):
                 raise SubmissionRefused(f"zip entry {info.filename!r} is a {kind}; "
                                         f"only plain files are accepted")
             if kind == "dir" or not parts or is_junk(parts):
                 continue
             check_path(parts)
-            if info.flag_bits & 0x1:
-                raise SubmissionRefused(f"zip entry {info.filename!r} is encrypted; "
-                                        f"submit it without a password")
             rel = "/".join(parts)
             if rel in files:
                 raise SubmissionRefused(f"zip has two entries named {rel!r}")
             if len(files) >= limits.max_files:
                 raise SubmissionRefused(f"zip has more than {limits.max_files} files")
-            if info.file_size > limits.max_file_bytes:
-                raise SubmissionRefused(f"{rel} is {info.file_size} bytes; the limit per file is "
-                                        f"{limits.max_file_bytes}")
-            if (info.file_size > limits.ratio_floor_bytes
-                    and info.file_size > limits.max_ratio * max(info.compress_size, 1)):
-                raise SubmissionRefused(f"{rel} compresses more than {limits.max_ratio:.0f}:1 (a zip bomb?)")
-            room = limits.max_total_bytes - total
-            data = _read_capped(archive, info, rel, min(limits.max_file_bytes, room))
+            data = read_entry(archive, info, rel, limits, limits.max_total_bytes - total)
             total += len(data)
             files[rel] = data
     return files
+
+
+def read_entry(archive: zipfile.ZipFile, info: zipfile.ZipInfo, rel: str, limits: Limits, room: int) -> bytes:
+    """One entry's bytes, checked as :func:`read_zip` checks each (encryption, size per file, compression
+    ratio) and read no further than ``room`` bytes whatever its header declares (SubmissionRefused)."""
+    if info.flag_bits & 0x1:
+        raise SubmissionRefused(f"zip entry {info.filename!r} is encrypted; submit it without a password")
+    if info.file_size > limits.max_file_bytes:
+        raise SubmissionRefused(f"{rel} is {info.file_size} bytes; the limit per file is "
+                                f"{limits.max_file_bytes}")
+    if (info.file_size > limits.ratio_floor_bytes
+            and info.file_size > limits.max_ratio * max(info.compress_size, 1)):
+        raise SubmissionRefused(f"{rel} compresses more than {limits.max_ratio:.0f}:1 (a zip bomb?)")
+    return _read_capped(archive, info, rel, min(limits.max_file_bytes, room))
 
 
 def _read_capped(archive: zipfile.ZipFile, info: zipfile.ZipInfo, rel: str, cap: int) -> bytes:

@@ -29,7 +29,7 @@ def klass() -> dict[str, dict]:
 def test_gradebook_has_one_column_per_check_and_defuses_formulas(wrong) -> None:
     rows = list(csv.DictReader(io.StringIO(gradebook_csv(klass()))))
     assert list(rows[0]) == ["student", "week3.fake.a", "week3.fake.b", "week3.fake.c", "total", "max",
-                             "status", "message"]
+                             "status", "message", "late_penalty", "score_before_penalty"]
     by_id = {r["student"]: r for r in rows}
     assert by_id["bob"]["week3.fake.a"] == "4.0" and by_id["bob"]["week3.fake.b"] == "0.0"
     assert by_id["dan"]["max"] == "10.0" and by_id["dan"]["week3.fake.a"] == ""

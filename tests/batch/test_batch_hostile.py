@@ -275,5 +275,5 @@ def test_the_runners_notices_reach_the_students_result(monkeypatch) -> None:
     monkeypatch.setattr(task_module, "grade_submission", lambda **kw: {"status": "graded",
                                                                          "notices": ["from the grading"]})
     second = task_module.grade_first({"student": "alice", "week": 3, "seed": 1, "hidden": False,
-                                      "files": pack({"a.py": b"x"}), "notices": ["skipped one"]})
+                                      "files": pack({"go_to_goal.py": b"x"}), "notices": ["skipped one"]})
     assert second.args[0]["notices"] == ["skipped one", "from the grading"]

