@@ -28,6 +28,7 @@ in each result, apart from what is compared.
 from __future__ import annotations
 
 import argparse
+import copy
 import dataclasses
 import difflib
 import math
@@ -319,12 +320,16 @@ class _Run:
         """Bring a reused result up to this run's identity and late policy without grading it again (its
         page's late section too); False when it must be graded again (its numbers cannot be trusted)."""
         identity = self._identity(student)
+        # the result as it was, for history/ when the late policy changes its score (a copy only then)
+        before = copy.deepcopy(stored) if self.klass.policy is not None or "late" in stored else None
         changed = settle_late(stored, identity, self.klass.policy, self.klass.extensions.get(student.id))
         if changed is None:
             return False
         batch = stored["batch"]
         if not changed and batch.get("identity") == identity.to_json():
             return True
+        if changed and before is not None:
+            batch["change"] = history.change(before, stored, history.archive(self.out, stem, before))
         if changed:
             page = self.out / f"{stem}.html"
             try:
