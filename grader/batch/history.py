@@ -11,6 +11,7 @@ which ``batch.json`` and the summary list for the students whose score or status
 from __future__ import annotations
 
 import json
+import math
 import re
 from pathlib import Path
 
@@ -34,12 +35,13 @@ def archive(out: Path, stem: str, stored: dict) -> str:
     if isinstance(key, str) and re.fullmatch(r"[0-9a-f]{8,64}", key):
         name += "-" + key[:8]
     folder = out / HISTORY / stem
-    text = json.dumps(stored, sort_keys=True)
+    clean = _finite(stored)
+    text = json.dumps(clean, sort_keys=True)
     for n in range(1000):
         path = folder / (f"{name}.json" if n == 0 else f"{name}-{n}.json")
         existing = read_json(path)
         if existing is None and not path.exists():
-            write_json(path, stored)
+            write_json(path, clean)
             return path.relative_to(out).as_posix()
         if existing is not None and json.dumps(existing, sort_keys=True) == text:
             return path.relative_to(out).as_posix()
@@ -98,9 +100,23 @@ def changed_rows(results: dict[str, dict]) -> list[dict]:
     return rows
 
 
+def _finite(value: object) -> object:
+    """``value`` with every NaN or infinity (which Python's JSON reader accepts) replaced by None."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, list):
+        return [_finite(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    return value
+
+
 def _score(result: dict) -> float | None:
+    """A stored score, or None when it is not a finite number (a stored result is read back as data)."""
     score = result.get("score")
-    return float(score) if isinstance(score, (int, float)) and not isinstance(score, bool) else None
+    if isinstance(score, bool) or not isinstance(score, (int, float)) or not math.isfinite(score):
+        return None
+    return float(score)
 
 
 def _digest(batch: dict) -> object:

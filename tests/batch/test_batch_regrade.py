@@ -163,3 +163,16 @@ def test_the_wrong_bookkeeping_is_caught(wrong: str, target: str, tmp_path: Path
     monkeypatch.setattr(history, target, getattr(wrong_regrade(), wrong))
     with pytest.raises(AssertionError):
         test_history_keeps_every_earlier_result_and_says_whose_score_changed_and_why(tmp_path, monkeypatch)
+
+
+def test_a_stored_result_with_a_score_that_is_no_number_is_shown_without_one(tmp_path: Path,
+                                                                            monkeypatch) -> None:
+    """A stored result is data: `NaN` (which Python's JSON reader accepts) must not stop batch.json."""
+    klass = make_class(tmp_path / "class", {"alice": "score 3"})
+    graded(tmp_path, monkeypatch)
+    stored = tmp_path / "out" / "alice.json"
+    stored.write_text(stored.read_text().replace('"score": 3.0', '"score": NaN'))
+    (klass / "alice" / "answer.txt").write_text("score 4\n")
+    report, again = graded(tmp_path, monkeypatch)
+    assert again == ["alice"]
+    assert (report["changed"][0]["before"], report["changed"][0]["after"]) == (None, 4.0)
