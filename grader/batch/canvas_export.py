@@ -23,7 +23,7 @@ import zipfile
 from pathlib import Path
 
 from grader.batch.identity import Identity
-from grader.batch.posted import Posted, points
+from grader.batch.posted import Posted, listed, points
 from grader.batch.store import replacing, write_atomic
 
 HEADER = ["Student", "ID", "SIS User ID", "SIS Login ID", "Section"]
@@ -108,5 +108,5 @@ def write_canvas(out: Path, rows: list[Posted], pages: dict[str, Path], title: s
             archive.writestr(zipfile.ZipInfo(name, date_time=(2020, 1, 1, 0, 0, 0)), data,
                              compress_type=zipfile.ZIP_DEFLATED)
             placed += 1
-    return {"canvas_import.csv": {"rows": len(rows), "title": title, "blank": blank},
-            "canvas_feedback.zip": {"entries": placed, "not_included": unplaced}}
+    return {"canvas_import.csv": {"rows": len(rows), "title": title, **listed("blank", blank)},
+            "canvas_feedback.zip": {"entries": placed, **listed("not_included", unplaced)}}

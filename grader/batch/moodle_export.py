@@ -32,7 +32,7 @@ from pathlib import Path
 
 from grader.batch.canvas_export import csv_cell
 from grader.batch.identity import Identity
-from grader.batch.posted import Posted, points
+from grader.batch.posted import Posted, listed, points
 from grader.batch.store import replacing, write_atomic
 
 WORKSHEET = ["Identifier", "Full name", "Email address", "Grade", "Maximum Grade", "Last modified (grade)",
@@ -133,7 +133,7 @@ def write_moodle(out: Path, rows: list[Posted], pages: dict[str, Path], title: s
             placed += 1
     in_sheet = [r for r in rows if participant_id(r.identity)]
     left_out = {r.identity.id: "no Moodle participant id" for r in rows if not participant_id(r.identity)}
-    return {"moodle_grading_worksheet.csv": {"rows": len(in_sheet), "not_included": left_out,
-                                             "blank": {r.identity.id: r.why_blank for r in in_sheet
-                                                       if not r.grade}},
-            "moodle_feedback.zip": {"entries": placed, "not_included": unplaced}}
+    blank = {r.identity.id: r.why_blank for r in in_sheet if not r.grade}
+    return {"moodle_grading_worksheet.csv": {"rows": len(in_sheet), **listed("not_included", left_out),
+                                             **listed("blank", blank)},
+            "moodle_feedback.zip": {"entries": placed, **listed("not_included", unplaced)}}

@@ -19,6 +19,13 @@ from dataclasses import dataclass
 
 from grader.batch.identity import Identity
 
+MAX_LISTED = 200        # students named per list in batch.json's ``exports`` (the count says the rest)
+
+
+def listed(name: str, why: dict[str, str]) -> dict:
+    """``{name: first MAX_LISTED of why, name + "_count": len(why)}`` for batch.json."""
+    return {name: dict(list(why.items())[:MAX_LISTED]), f"{name}_count": len(why)}
+
 
 @dataclass(frozen=True)
 class Posted:

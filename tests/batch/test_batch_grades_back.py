@@ -183,7 +183,7 @@ def test_a_class_folder_is_matched_by_sis_user_id(tmp_path: Path) -> None:
     record = write_exports(tmp_path, results, {"s1234567": "s1234567"}, week=3, title=TITLE)
     rows = list(csv.reader(io.StringIO((tmp_path / "canvas_import.csv").read_text(encoding="utf-8"))))
     assert rows[2] == ["Ann Lee", "", "s1234567", "", "", "7.25"]
-    assert record["canvas_feedback.zip"] == {"entries": 0, "not_included": {
+    assert record["canvas_feedback.zip"] == {"entries": 0, "not_included_count": 1, "not_included": {
         "s1234567": "no file of a Canvas download to attach the report to"}}
     assert record["moodle_feedback.zip"]["not_included"] == {"s1234567": "no Moodle participant id"}
     assert (tmp_path / "moodle_grading_worksheet.csv").read_text().count("\n") == 1     # the header only
