@@ -262,7 +262,11 @@ class _Run:
         # the hidden set this grading runs (None with --visible-only): its digest is in the cache key, so an
         # edited hidden set regrades everyone; results keep it without the variants (no hidden goal in a
         # file a student may be handed), batch.json with them
-        self.hidden_set = hidden_set_identity(options.week, self.seed) if options.hidden else None
+        try:
+            self.hidden_set = hidden_set_identity(options.week, self.seed) if options.hidden else None
+        except (ValueError, KeyError, TypeError) as exc:    # a hand-edited weekN.json that does not parse
+            raise BatchError(f"the hidden set of week {options.week} cannot be read ({printable(exc)}); "
+                             f"fix instructor_tools/hidden/week{options.week}.json") from None
         self.progress = Progress(len(self.students), stream=stream, quiet=options.quiet)
         for line in [] if options.quiet else klass.messages():
             self.progress.message(line)

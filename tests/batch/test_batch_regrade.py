@@ -176,3 +176,13 @@ def test_a_stored_result_with_a_score_that_is_no_number_is_shown_without_one(tmp
     report, again = graded(tmp_path, monkeypatch)
     assert again == ["alice"]
     assert (report["changed"][0]["before"], report["changed"][0]["after"]) == (None, 4.0)
+
+
+def test_a_hidden_set_that_does_not_parse_stops_the_batch_with_its_name(tmp_path: Path, monkeypatch) -> None:
+    edited = tmp_path / "hidden"
+    shutil.copytree(hidden_dir(), edited)
+    (edited / "week4.json").write_text('{"variants": [')
+    monkeypatch.setenv("SIMIAM_HIDDEN", str(edited))
+    make_class(tmp_path / "class", {"a": "score 4"})
+    with pytest.raises(BatchError, match=r"hidden set of week 4 cannot be read .*week4\.json"):
+        graded(tmp_path, monkeypatch, week=4)
