@@ -214,6 +214,11 @@ def read_class(source: Path, options: IntakeOptions, out: Path | None = None) ->
                 if until is not None:
                     klass.extensions[sid] = until
     klass.policy = policy
+    untimed = [s.id for s in klass.students if not _identity(s).submitted_at and not _identity(s).late_flag]
+    if policy and untimed:
+        klass.notes.append(f"{len(untimed)} submissions have no submission time (the download gives none): "
+                           f"not charged; give --times ({', '.join(untimed[:20])}"
+                           f"{', ...' if len(untimed) > 20 else ''})")
     klass.no_time_late = [
         s.id for s in klass.students if (i := _identity(s)).late_flag and not i.submitted_at
     ]
@@ -359,8 +364,7 @@ def _step_in(export: Export, top: list[str]) -> list[str]:
         prefix = top[0] + "/"
         inner = sorted({e.name[len(prefix) :].split("/", 1)[0] for e in export.entries})
         if moodle_download.looks_like(inner) or any(canvas_download.ENTRY.match(n) for n in inner):
-            export.entries = [dataclasses.replace(e, name=e.name[len(prefix) :]) for e in export.entries]
-            export.prefix = prefix
+            export.step_into(top[0])
             return export.top_names()
     return top
 

@@ -23,7 +23,6 @@ import csv
 import dataclasses
 import io
 from dataclasses import dataclass
-from datetime import datetime
 from pathlib import Path
 
 from grader.batch.identity import Identity
@@ -200,7 +199,3 @@ def _filled(ident: Identity, row: Identity) -> Identity:
         sis_id=ident.sis_id or row.sis_id,
     )
 
-
-def stamp(when: datetime) -> str:
-    """ISO 8601 with its offset, as identities store times."""
-    return when.isoformat()

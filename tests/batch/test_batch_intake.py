@@ -589,3 +589,11 @@ def test_a_roster_over_a_class_folder(tmp_path: Path) -> None:
     (tmp_path / "noid.csv").write_text("fruit,colour\napple,red\n")
     with pytest.raises(IntakeError, match="no id column"):
         read_class(klass, IntakeOptions(roster=tmp_path / "noid.csv"))
+
+
+def test_a_download_zipped_again_inside_one_folder(tmp_path: Path) -> None:
+    entries = {f"CS101 submissions/{name}": text for name, text in moodle_entries(flat=True).items()}
+    klass = read_class(make_zip(tmp_path / "again.zip", entries), IntakeOptions())
+    assert klass.layout == "moodle" and [s.id for s in klass.students] == ["501", "502", "503"]
+    jane = read_submission(klass.students[0], week=3)
+    assert jane.files == {"answer.txt": b"score 10\n"}
