@@ -49,7 +49,7 @@ SKIPPED = (
          "installs into a new environment: tests/packaging/test_wheel.py installs the wheel in a fresh venv "
          "and runs grade, simiam run and migrate from it; here the suite's own install is used"),
     Skip(r"--executor dask|^dask ", "needs a Dask cluster (tests/batch/test_batch_dask.py runs a local one)"),
-    Skip(r"--batch (\"[^\"]+\"|\S+)\.zip\b",
+    Skip(r"--batch (\"[^\"]+\.zip\"|\S+\.zip\b)",
          "a course platform's download, which the checkout does not hold: tests/batch/test_batch_intake.py "
          "builds Canvas, Moodle and Gradescope downloads in their real layouts and reads these options "
          "from the command line (test_the_command_line_reads_the_intake_options)"),
