@@ -40,10 +40,9 @@ from grader.platforms.wrong_versions import apply_mistake
 from simiam.control.local_brain import LocalBrain
 from simiam.course.folders import instructor_tool
 from simiam.course.loader import load_submission
-from simiam.course.weeks import get_week
+from simiam.course.weeks import get_week, spec_for_week
 from simiam.fleet import Fleet
 from simiam.physics import robot_surfaces
-from simiam.robot.quickbot import spec_for_week
 from simiam.signals import week_signals
 from simiam.simulator import ConstantBrain, Simulator
 from simiam.trace import Trace

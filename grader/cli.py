@@ -9,7 +9,9 @@
     grade week3 path/to/alice --hidden --seed graded/          # one student with that batch's hidden set
     grade week3 --batch CS101-HW3_submissions.zip --roster gradebook.csv --deadline 2026-03-01T23:59-05:00 \
         --late-penalty 10%/day --late-cap 50%   # a Canvas, Moodle or Gradescope download as it comes
-    grade handout week3 --out release/   # and: grade package gradescope|prairielearn weekN, grade selfcheck
+    grade handout week3 --out release/   # and: grade package gradescope|prairielearn|coursera weekN,
+                                         #      grade selfcheck
+    grade similarity week3 submissions/ --out graded/   # pairs of students whose code blocks look alike
 
 Exit status: 0 every check passed, 1 some check did not, 2 the command itself could not run.
 """
@@ -23,6 +25,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from grader.grading import DEFAULT_SEED, CourseFilesMissing, grade_submission, write_outputs
+from grader.platforms.cli import PLATFORMS
 from grader.result import all_passed
 from grader.sandbox.capabilities import has_module
 from grader.terminal import print_result
@@ -38,8 +41,9 @@ PLATFORM_COMMANDS = ("handout", "package", "selfcheck")   # grader.platforms.cli
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="grade", description="Grade a Control of Mobile Robots (QuickBot) assignment.",
-        epilog="Instructors: grade handout weekN, grade package gradescope|prairielearn weekN, "
-               "grade selfcheck (grade handout --help, ...; see docs/platforms.md).",
+        epilog=f"Instructors: grade handout weekN, grade package {'|'.join(PLATFORMS)} weekN, "
+               "grade selfcheck (grade handout --help, ...; see docs/platforms.md); grade similarity weekN "
+               "SOURCE: similar code blocks in a class (docs/batch.md).",
     )
     p.add_argument("week", help=f"week{min(week_numbers())} .. week{max(week_numbers())}, or all")
     p.add_argument("path", nargs="?", default=None, help="submission folder (default: the current folder "
@@ -88,8 +92,13 @@ def _parser() -> argparse.ArgumentParser:
     )
     batch.add_argument("--force", action="store_true", help="regrade what is already graded")
     batch.add_argument("--quiet", action="store_true", help="no progress bar")
-    batch.add_argument("--executor", default="local", choices=("local", "dask"))
+    batch.add_argument("--executor", default="local", choices=("local", "dask"),
+                       help="where the submissions are graded: local (--jobs processes on this machine, the "
+                            "default) or dask (the workers of the Dask cluster at --scheduler)")
     batch.add_argument("--scheduler", default=None, help="Dask scheduler address (with --executor dask)")
+    batch.add_argument("--similarity", action="store_true",
+                       help="after grading, also write similarity.html: pairs of students whose code blocks "
+                            "look alike (as grade similarity weekN SOURCE)")
     late = p.add_argument_group("roster and late work (with --batch; see docs/batch.md)")
     late.add_argument("--roster", default=None, metavar="CSV",
                       help="the class list: id, name, login/email, section, extension columns (a Canvas "
@@ -193,6 +202,10 @@ def main(argv: list[str] | None = None) -> int:
         from grader.platforms.cli import main as platforms_main
 
         return platforms_main(argv)
+    if argv and argv[0] == "similarity":
+        from grader.similarity.command import main as similarity_main
+
+        return similarity_main(argv[1:])
     parser = _parser()
     args = parser.parse_args(argv)
     try:

@@ -40,6 +40,8 @@ class Limit:
     limit: float
     above: bool
     strict: bool = False
+    percent: bool = False  # a fraction (week 3's overshoot) that people read as a percentage: shown x 100
+
 
     def margin(self, value: float | None) -> float | None:
         """The signed distance of `value` from the limit, positive on the passing side (None: no value)."""
@@ -48,10 +50,13 @@ class Limit:
         return value - self.limit if self.above else self.limit - value
 
     def entry(self, value: float | None, run: str) -> dict[str, Any]:
-        return {"figure": self.figure, "unit": self.unit, "limit": self.limit,
-                "passes": ("over" if self.strict else "above") if self.above else
-                          ("under" if self.strict else "below"),
-                "value": value, "margin": self.margin(value), "run": run}
+        out = {"figure": self.figure, "unit": self.unit, "limit": self.limit,
+               "passes": ("over" if self.strict else "above") if self.above else
+                         ("under" if self.strict else "below"),
+               "value": value, "margin": self.margin(value), "run": run}
+        if self.percent:
+            out["shown"] = "percent"
+        return out
 
 
 # the TRUE gap between the base plate and the obstacles, at every step; 0 once they touch (a collision)
@@ -97,7 +102,10 @@ def words(entry: dict[str, Any]) -> str:
     """One margin for people: 'clearance 0.0236 m (limit > 0 m): 0.0236 m to spare [switching to (-1, 1)]'.
     Works on any dict of that shape (a result read back from JSON)."""
     unit = f" {entry['unit']}" if entry.get("unit") else ""
-    value, margin = entry.get("value"), entry.get("margin")
+    value, margin, limit = entry.get("value"), entry.get("margin"), entry.get("limit")
+    if entry.get("shown") == "percent":  # stored as fractions, read as the checks' messages say them
+        unit = " %"
+        value, margin, limit = (None if f is None else f * 100 for f in (value, margin, limit))
     shown = "none" if value is None else f"{value:.4g}{unit}"
     if margin is None:
         how = "the run ended without it"
@@ -111,4 +119,4 @@ def words(entry: dict[str, Any]) -> str:
         how = f"{-margin:.3g}{unit} past it"
     side = _SIDES.get(str(entry.get("passes")), "?")
     run = f" [{entry['run']}]" if entry.get("run") else ""
-    return f"{entry.get('figure')} {shown} (limit {side} {entry.get('limit'):g}{unit}): {how}{run}"
+    return f"{entry.get('figure')} {shown} (limit {side} {limit:g}{unit}): {how}{run}"

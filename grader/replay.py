@@ -3,7 +3,7 @@
 The traceback of the student's own code (only frames in their files), what their code printed, and a
 short Python snippet that calls their function with exactly the failing inputs, to paste into a Python
 prompt or a file next to their folder. The snippet mirrors what the probe did in the worker
-(grader/inside/probes.py) with the public simiam API a student has installed.
+(grader/inside/probes_weekN.py) with the public simiam API a student has installed.
 """
 
 from __future__ import annotations

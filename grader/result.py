@@ -67,8 +67,9 @@ def package_version() -> str:
 
 # The code that decides a score besides the checks' own functions: a change here changes the hash too.
 _EXPECTED = Path(__file__).resolve().parent / "checks" / "expected"
+# The probes count with the registry: every module a registered probe is defined in (grader.inside.probes).
 _SCORING_MODULES = ("grader.reference", "grader.properties", "grader.scenarios", "grader.inside.probes",
-                    "grader.checks.answers", "grader.hidden", "grader.hidden.draw")
+                    "grader.inside.probing", "grader.checks.answers", "grader.hidden", "grader.hidden.draw")
 
 
 def check_set_hash(checks: list) -> str:
@@ -79,8 +80,10 @@ def check_set_hash(checks: list) -> str:
     Two runs with the same hash (and seed) ran the same checks the same way, so a local and an official
     result can be compared.
     """
+    from grader.inside.probes import PROBES
+
     h = hashlib.sha256()
-    modules = set(_SCORING_MODULES)
+    modules = set(_SCORING_MODULES) | {probe.__module__ for probe in PROBES.values()}
     for check in sorted(checks, key=lambda c: c.id):
         h.update(json.dumps([check.id, check.weight, check.kind, check.visibility]).encode())
         modules.add(getattr(check.run, "__module__", "") or "")

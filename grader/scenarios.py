@@ -49,10 +49,11 @@ class Run:
         return s["x"][-1], s["y"][-1], s["theta"][-1]
 
 
-def _brain(ctx: Context, settings: dict[str, Any], session: Any = None, cpu: int | None = None):
+def _brain(ctx: Context, settings: dict[str, Any], session: Any = None, cpu: int | None = None,
+           estimate: tuple[float, float, float] | None = None):
     from grader.sandbox.session import RemoteBrain
 
-    return RemoteBrain(session if session is not None else ctx.session, settings, cpu=cpu)
+    return RemoteBrain(session if session is not None else ctx.session, settings, cpu=cpu, start=estimate)
 
 
 def run(
@@ -67,12 +68,15 @@ def run(
     goal_radius: float | None = None,
     session: Any = None,
     stop_rule: Callable[[tuple[float, float, float]], Callable[[StepRecord], bool]] | None = None,
+    estimate_start: tuple[float, float, float] | None = None,
 ) -> Run:
     """Run the student's supervisor with `settings` for `seconds` (stop at a collision, or once the TRUE
     position is within `goal_radius` of `goal`, or once the check's own `stop_rule`, made from the run's
     TRUE start pose (nudged, as the trace's first row), is true of a step's record: week 6's laps).
     `session`: another worker than ctx.session (e.g. grader.earlier's, with the course's versions of
-    earlier weeks' parts)."""
+    earlier weeks' parts). `estimate_start`: where the supervisor's estimate starts, when not at the
+    week's start (0, 0, 0): week 3's runs from elsewhere start it at their (un-nudged) start, as the robot
+    is told."""
     config = ctx.config
     world = world or load_world(config.world)
     start = nudged(start or world.start, ctx.start_nudge)
@@ -88,7 +92,7 @@ def run(
             return math.dist(rec.pose[:2], goal) < goal_radius
     with SameCore() as cpu:  # the grader and the worker take turns: on one core (speed only)
         try:
-            brain = _brain(ctx, settings, session, cpu)
+            brain = _brain(ctx, settings, session, cpu, estimate_start)
             sim = Simulator(sim_goal, brain, ctx.spec, dt=config.dt, start=start,
                             signals=week_signals(config))
         except SandboxError as exc:

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import math
 
+from simiam.course.weeks import spec_for_week
 from simiam.robot.ir_sensor import VOLTAGE_COEFFS, mounted_cone
-from simiam.robot.quickbot import spec_for_week
 
 
 def baseline_steps(n: int, dt: float = 0.033) -> float:

@@ -16,7 +16,7 @@ import sys
 from pathlib import Path
 
 from instructor_tools.reference_maths import go_to_angle_run
-from simiam.robot.quickbot import spec_for_week
+from simiam.course.weeks import spec_for_week
 
 FOLDER = Path(__file__).resolve().parents[1] / "grader" / "checks" / "expected"
 

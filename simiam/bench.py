@@ -18,8 +18,8 @@ import sys
 import time
 
 from simiam.course.folders import NotInCheckout, instructor_tool
+from simiam.course.weeks import spec_for_week
 from simiam.machine import load_after_line, load_average, machine_line, ratio
-from simiam.robot.quickbot import spec_for_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
 

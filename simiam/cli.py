@@ -23,6 +23,9 @@ def _parser() -> argparse.ArgumentParser:
                      help="time step in seconds (default: the week's, 0.033; the original also ran 0.05)")
     run.add_argument("--out", default="runs", help="output folder (default ./runs)")
     run.add_argument("--world", default=None, help="world file to use instead of the week's")
+    run.add_argument("--start", default=None, metavar="X,Y,THETA",
+                     help="the robot's start pose instead of the world's: metres and radians; THETA may be "
+                          "written with pi, e.g. --start 0,0,pi or --start=-0.5,0.2,-pi/2")
 
     mig = sub.add_parser("migrate", help="carry your filled blocks from last week's folder into this week's")
     mig.add_argument("week", help="the week to migrate into, e.g. week3")

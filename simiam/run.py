@@ -12,7 +12,9 @@ settings the supervisor sets under a misspelt name (set, never read: the run kee
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
+import re
 import shutil
 import sys
 import tempfile
@@ -77,6 +79,12 @@ def main(args: argparse.Namespace) -> int:
         world = load_world(args.world or week.world)
     except (WorldFileError, OSError) as exc:
         return _fail(f"simiam run: cannot read the world: {exc}", 2)
+    if getattr(args, "start", None) is not None:
+        try:
+            start = parse_start(args.start)
+        except ValueError as exc:
+            return _fail(f"simiam run: --start {args.start!r}: {exc}", 2)
+        world = dataclasses.replace(world, starts=[start, *world.starts[1:]])  # the world as read stays
 
     for note in outside_edit_notes(week, folder) + misspelt_setting_notes(folder):
         print(f"warning: {note}", file=sys.stderr)
@@ -85,6 +93,51 @@ def main(args: argparse.Namespace) -> int:
         for note in notes:
             print(f"warning: {note}", file=sys.stderr)
         return _run(args, week, folder, run_folder, world, seconds)
+
+
+START_LIMIT = 100.0  # m: a start pose farther out than any course world is a typing slip, not a run
+
+
+def parse_start(text: str) -> tuple[float, float, float]:
+    """`X,Y,THETA` as the robot's start pose (metres, radians). THETA may use pi: `pi`, `-pi/2`, `0.5*pi`,
+    `3pi/4`. ValueError says what is wrong."""
+    parts = [p.strip() for p in text.split(",")]
+    if len(parts) != 3:
+        raise ValueError(f"give three numbers X,Y,THETA separated by commas (got {len(parts)})")
+    x, y = (_number(p, name) for p, name in zip(parts[:2], ("X", "Y"), strict=True))
+    theta = _angle(parts[2])
+    for name, value in (("X", x), ("Y", y)):
+        if abs(value) > START_LIMIT:
+            raise ValueError(f"{name} = {value:g} m is outside any course world (at most {START_LIMIT:g} m)")
+    if abs(theta) > 100 * math.pi:
+        raise ValueError(f"THETA = {theta:g} rad: give a heading between -pi and pi")
+    return x, y, theta
+
+
+def _number(text: str, name: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise ValueError(f"{name} must be a number, got {text!r}") from None
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be a finite number, got {text!r}")
+    return value
+
+
+_PI = re.compile(r"^([+-]?)(\d+(?:\.\d*)?|\.\d+)?\s*\*?\s*pi\s*(?:/\s*(\d+(?:\.\d*)?))?$")
+
+
+def _angle(text: str) -> float:
+    """THETA in radians: a number, or a multiple of pi as people write it (pi, -pi/2, 0.5*pi, 3pi/4)."""
+    found = _PI.match(text.strip().lower())
+    if not found:
+        return _number(text, "THETA")
+    sign, factor, divisor = found.groups()
+    below = float(divisor) if divisor else 1.0
+    value = (float(factor) if factor else 1.0) * math.pi / below if below else math.inf
+    if not math.isfinite(value):
+        raise ValueError(f"THETA must be a finite angle, got {text!r}")
+    return -value if sign == "-" else value
 
 
 def fill_missing_files(week: Week, folder: Path, tmp: Path) -> tuple[Path, list[str]]:

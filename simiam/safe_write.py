@@ -14,7 +14,10 @@ follows a link planted at `path` and overwrites whatever it points to; a tempora
 4. it is renamed over the final name (os.replace, which replaces a name and never follows a link there;
    a reader sees the old file or the new one, never a torn one). On any failure it is removed.
 
-The folders above the one written into are the path the user gave and are followed as usual. Writers
+The folders above the one written into are the path the user gave and are followed as usual, unless the
+caller names a folder `below` which none may be a link (the batch's output folder, grader.batch.store): then
+every level from `below` down to the file is opened relative to the one above it with O_NOFOLLOW
+(`open_folder_below`), so a link at any of them is refused, not followed. Writers
 into a folder the grading made itself (tempfile.mkdtemp: the worker's copy of a submission, the spliced
 files, a library being built) need none of this and use plain writes. Where the system has no O_NOFOLLOW
 or descriptor-relative calls (Windows, where only `simiam run` and `simiam migrate` may run), the same
@@ -49,29 +52,34 @@ class LinkRefused(OSError):
 
 
 def write_text(path: str | Path, text: str, *, encoding: str = "utf-8", errors: str = "strict",
-               mode: int | None = None, fsync: bool = False) -> Path:
+               mode: int | None = None, fsync: bool = False, below: Path | None = None) -> Path:
     """Write `text` to `path` as above; `mode` sets the file's permission bits before a byte is written
-    (a secret is never readable by others), `fsync` makes the bytes durable before the rename."""
-    return write_bytes(path, text.encode(encoding, errors), mode=mode, fsync=fsync)
+    (a secret is never readable by others), `fsync` makes the bytes durable before the rename, `below` is
+    a folder above `path` under which no level may be a link (see the module docstring)."""
+    return write_bytes(path, text.encode(encoding, errors), mode=mode, fsync=fsync, below=below)
 
 
-def write_bytes(path: str | Path, data: bytes, *, mode: int | None = None, fsync: bool = False) -> Path:
-    """Write `data` to `path` as above (see write_text for `mode` and `fsync`)."""
-    with replacing(path, mode=mode, fsync=fsync) as stream:
+def write_bytes(path: str | Path, data: bytes, *, mode: int | None = None, fsync: bool = False,
+                below: Path | None = None) -> Path:
+    """Write `data` to `path` as above (see write_text for `mode`, `fsync` and `below`)."""
+    with replacing(path, mode=mode, fsync=fsync, below=below) as stream:
         stream.write(data)
     return Path(path)
 
 
 @contextlib.contextmanager
-def replacing(path: str | Path, *, mode: int | None = None, fsync: bool = False) -> Iterator[BinaryIO]:
+def replacing(path: str | Path, *, mode: int | None = None, fsync: bool = False,
+              below: Path | None = None) -> Iterator[BinaryIO]:
     """A binary stream whose bytes become `path` when the block ends without an exception (for writers
     that stream: a zip, a CSV). If the block raises, `path` is left as it was."""
     path = Path(path)
     if not _AT_FOLDER:
+        if below is not None:
+            _refuse_links_by_path(below, path.parent)
         with _replacing_by_path(path, mode, fsync) as stream:
             yield stream
         return
-    folder = _open_folder(path.parent)
+    folder = _open_folder(path.parent) if below is None else open_folder_below(below, path.parent)
     try:
         _refuse_link(path, folder)
         temporary, fd = _create_temporary(path.name, folder, mode)
@@ -125,6 +133,54 @@ def _open_folder(path: Path) -> int:
         if exc.errno == errno.ELOOP or (exc.errno == errno.ENOTDIR and path.is_symlink()):
             raise LinkRefused(path) from None
         raise
+
+
+def open_folder_below(root: Path, folder: Path, create: bool = True) -> int:
+    """A descriptor of `folder`, which is `root` or lies below it: `root` is opened as the user gave it,
+    every level below it relative to the one above with O_NOFOLLOW (and made first when missing, if
+    `create`), so a link at any level below `root` is LinkRefused naming it, and none can be swapped in
+    half-way. FileNotFoundError when a level is missing and not `create`. The caller closes it."""
+    parts = folder.relative_to(root).parts     # ValueError when `folder` is not below `root`
+    if any(part in (".", "..") for part in parts):
+        raise ValueError(f"{folder} names a folder above {root}")
+    if create:
+        root.mkdir(parents=True, exist_ok=True)
+    fd = os.open(root, os.O_RDONLY | os.O_DIRECTORY | os.O_CLOEXEC)
+    here = root
+    try:
+        for part in parts:
+            here = here / part
+            if create:
+                with contextlib.suppress(FileExistsError):
+                    os.mkdir(part, dir_fd=fd)
+            try:
+                inner = os.open(part, os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW | os.O_CLOEXEC, dir_fd=fd)
+            except OSError as exc:
+                if exc.errno == errno.ELOOP or (exc.errno == errno.ENOTDIR and _is_link(part, fd)):
+                    raise LinkRefused(here) from None
+                raise
+            os.close(fd)
+            fd = inner
+    except BaseException:
+        os.close(fd)
+        raise
+    return fd
+
+
+def _is_link(name: str, folder: int) -> bool:
+    try:
+        return stat.S_ISLNK(os.stat(name, dir_fd=folder, follow_symlinks=False).st_mode)
+    except OSError:
+        return False
+
+
+def _refuse_links_by_path(root: Path, folder: Path) -> None:
+    """`open_folder_below`'s refusal where descriptor-relative calls are missing: by path."""
+    here = root
+    for part in folder.relative_to(root).parts:
+        here = here / part
+        if here.is_symlink():
+            raise LinkRefused(here)
 
 
 def _refuse_link(path: Path, folder: int) -> None:

@@ -2,11 +2,11 @@
 
 Test settings: `fw_direction` ("left" or "right") and `d_fw` (the distance to keep from the wall) are set in
 the constructor's block; v in __init__. There is no switching this week: the robot always follows a wall.
-ensure_w (week 4) is provided.
+ensure_w is provided: the course's dead-zone version, shipped filled in since week 4 (not week 3's).
 
 Student blocks and the placeholders the stub gets:
-  __init__ (week 6): d_fw, fw_direction. Placeholder: `self.d_fw = 0.1` and `self.fw_direction = "left"`
-    (the original release's values; at 0.1 m the robot clips the obstacle within 3 s).
+  __init__ (week 6): d_fw, fw_direction. Placeholder: `self.d_fw = 0` and `self.fw_direction = "left"`
+    (the robot drives into the wall; the original release's d_fw = 0.1 clips the obstacle within 3 s).
   update_odometry (week 2, shipped filled in): `x_dt = 0`, `y_dt = 0`, `theta_dt = 0`.
 """
 

@@ -13,8 +13,9 @@ from __future__ import annotations
 
 import hashlib
 import json
-from importlib import metadata
 from pathlib import Path
+
+from grader.batch.stored import well_formed
 
 _SUFFIXES = {".py", ".j2", ".html", ".xml", ".json", ".css", ".js", ".txt"}
 # Batch plumbing does not change a grade, except task.py, which calls the grader and rewrites paths.
@@ -25,14 +26,16 @@ FINAL_STATUSES = ("graded", "invalid")
 
 
 def _package_version() -> str:
-    try:
-        return metadata.version("simiam")
-    except metadata.PackageNotFoundError:
-        return "0+unknown"
+    """The version a single grading states too (simiam.__version__, which the distribution is built with)."""
+    from grader.result import package_version
+
+    return package_version()
 
 
 def grader_fingerprint() -> str:
-    """``<version>+<12 hex>``: the package version and a hash of every file that can change a grade.
+    """``<version>+<12 hex>``: the package version (grader.result.package_version, as in a single
+    grading's version) and a hash of every file that can change a grade. Every file of a batch states
+    this one string as its grader version.
 
     Computed afresh on each call (about 20 ms), never cached: a long-lived process (a notebook running
     several batches) must see a check fixed in between.
@@ -65,8 +68,10 @@ def cache_key(week: int, seed: int, hidden: bool, submission_sha256: str, grader
 
 
 def is_fresh(stored: dict | None, key: str) -> bool:
-    """True when ``stored`` (a per-student result, or None) can be reused for ``key``."""
-    if not isinstance(stored, dict) or stored.get("status") not in FINAL_STATUSES:
+    """True when ``stored`` (a per-student result, or None) can be reused for ``key``: a final status, the
+    same key, and a shape the class files can be built from (grader.batch.stored: a malformed one is
+    regraded, never trusted)."""
+    if not isinstance(stored, dict) or stored.get("status") not in FINAL_STATUSES or not well_formed(stored):
         return False
     batch = stored.get("batch")
     return isinstance(batch, dict) and batch.get("cache_key") == key

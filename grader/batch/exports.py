@@ -17,7 +17,7 @@ from grader.batch.canvas_export import write_canvas
 from grader.batch.identity import Identity
 from grader.batch.moodle_export import write_moodle
 from grader.batch.posted import class_rows
-from grader.batch.store import write_atomic, write_json
+from grader.batch.store import output_folder, write_atomic, write_json
 
 GRADESCOPE_VISIBILITY = ("visible", "hidden", "after_due_date", "after_published")
 DEFAULT_CANVAS_TITLE = "Autograder"        # with the week: "Autograder week 3" (--canvas-assignment)
@@ -54,14 +54,15 @@ def safe_cell(value: object) -> object:
 
 def gradebook_csv(results: dict[str, dict], missing: list[str] | tuple[str, ...] = ()) -> str:
     """One row per student: id, one column of points per check, total (after any late penalty), max,
-    status, message, late_penalty and score_before_penalty (blank without a late policy); a ``held``
-    student's total is blank, and each roster student in ``missing`` has a row with a blank total."""
+    status, message, late_penalty and score_before_penalty (blank without a late policy), and the grader
+    version that graded it (the batch's one version string); a ``held`` student's total is blank, and
+    each roster student in ``missing`` has a row with a blank total."""
     ids = check_ids(results)
     fallback_max = class_max_score(results)
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(["student", *ids, "total", "max", "status", "message", "late_penalty",
-                     "score_before_penalty"])
+                     "score_before_penalty", "grader"])
     for sid in sorted(results):
         result = results[sid]
         points = {c.get("id"): c.get("points") for c in result.get("checks") or [] if isinstance(c, dict)}
@@ -71,11 +72,12 @@ def gradebook_csv(results: dict[str, dict], missing: list[str] | tuple[str, ...]
         late = lt if isinstance(lt := result.get("late"), dict) else {}
         row = [sid, *[_number(points.get(cid)) for cid in ids], _number(result.get("score", 0.0)),
                _number(max_score), result.get("status", ""), _one_line(result.get("message", "")),
-               _number(late.get("penalty_points")), _number(late.get("score_before"))]
+               _number(late.get("penalty_points")), _number(late.get("score_before")),
+               _one_line(result.get("grader_version", ""), 100)]
         writer.writerow([safe_cell(cell) for cell in row])
     for sid in sorted(set(missing) - set(results)):
         writer.writerow([safe_cell(c) for c in [sid, *[""] * len(ids), "", _number(fallback_max), "missing",
-                                                 "on the roster, no submission", "", ""]])
+                                                 "on the roster, no submission", "", "", ""]])
     return buffer.getvalue()
 
 
@@ -131,23 +133,26 @@ def write_exports(out: Path, results: dict[str, dict], stems: dict[str, str], me
     the run's ``meta["roster"]`` (Identity JSON) and ``meta["missing"]``.
 
     The Gradescope files are written by a few threads: each write waits for its fsync, and at the end of
-    a batch the cores have nothing else to do (400 students: 5.3-6.7 s one by one, 1.9-3.4 s so)."""
+    a batch the cores have nothing else to do (400 students: 5.3-6.7 s one by one, 1.9-3.4 s so).
+    No level below ``out`` is followed if it is a link (grader.batch.store.output_folder)."""
     meta = meta or {}
     if missing is None:
         missing = [m for m in meta.get("missing") or [] if isinstance(m, str)]
     if roster is None:
         roster = [i for i in map(Identity.from_json, meta.get("roster") or []) if i is not None]
-    write_atomic(out / "gradebook.csv", gradebook_csv(results, missing))
-    max_score = class_max_score(results)
-    rows = class_rows(results, max_score, roster, missing)
-    pages = {sid: out / f"{stems[sid]}.html" for sid, r in results.items() if r.get("status") in WITH_REPORT}
-    if title == DEFAULT_CANVAS_TITLE and week is not None:
-        title = f"{DEFAULT_CANVAS_TITLE} week {week}"
-    record = {**write_canvas(out, rows, pages, title, max_score),
-              **write_moodle(out, rows, pages, title, max_score)}
+    with output_folder(out):
+        write_atomic(out / "gradebook.csv", gradebook_csv(results, missing))
+        max_score = class_max_score(results)
+        rows = class_rows(results, max_score, roster, missing)
+        pages = {sid: out / f"{stems[sid]}.html" for sid, r in results.items()
+                 if r.get("status") in WITH_REPORT}
+        if title == DEFAULT_CANVAS_TITLE and week is not None:
+            title = f"{DEFAULT_CANVAS_TITLE} week {week}"
+        record = {**write_canvas(out, rows, pages, title, max_score),
+                  **write_moodle(out, rows, pages, title, max_score)}
 
-    def export(sid: str) -> None:
-        write_json(out / "gradescope" / stems[sid] / "results.json", gradescope_result(results[sid]))
-    with ThreadPoolExecutor(max_workers=8, thread_name_prefix="gradescope-export") as writers:
-        list(writers.map(export, results))      # list(): the first error is raised here
+        def export(sid: str) -> None:
+            write_json(out / "gradescope" / stems[sid] / "results.json", gradescope_result(results[sid]))
+        with ThreadPoolExecutor(max_workers=8, thread_name_prefix="gradescope-export") as writers:
+            list(writers.map(export, results))      # list(): the first error is raised here
     return record

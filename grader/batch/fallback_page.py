@@ -37,6 +37,7 @@ td.msg{white-space:pre-wrap;overflow-wrap:anywhere}</style></head><body>
 {% for c in checks %}<tr><td>{{ c.id }}</td><td>{{ c.name }}</td><td>{{ c.status }}</td>
 <td>{{ c.points }} / {{ c.max_points }}</td><td class="msg">{{ c.message }}</td></tr>
 {% endfor %}</table>{% endif %}
+<p>Graded with grader <code>{{ grader }}</code>, seed <code>{{ seed }}</code>.</p>
 </body></html>
 """
 
@@ -53,4 +54,4 @@ def fallback_page(student_id: str, result: dict) -> str:
         score=str(result.get("score")), max_score=str(result.get("max_score")),
         # a held student's message is the instructor's (it may name the export's other entries)
         message="" if status == "held" else str(result.get("message") or ""), advice=_ADVICE.get(status, ""),
-        checks=checks)
+        checks=checks, grader=str(result.get("grader_version") or ""), seed=str(result.get("seed")))

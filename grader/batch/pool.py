@@ -43,6 +43,7 @@ from grader.batch.grading_process import NO_TASK
 from grader.batch.proctree import exit_reason, kill_tree
 from grader.sandbox.capabilities import is_root
 from grader.sandbox.leftovers import sweep_scratch
+from grader.sandbox.runner import kill_uid
 from grader.sandbox.workdir import temp_folder
 
 SCRATCH_PREFIX = "simiam-slot-"
@@ -159,7 +160,7 @@ class _Slot:
             if resource is not None:
                 resource.close()
         if self.scratch is not None:
-            sweep_scratch(self.scratch)
+            sweep_scratch(self.scratch, kill_uid)
         self.proc, self.send_conn, self.conn, self.log, self.scratch = None, None, None, None, None
 
     def log_tail(self, limit: int = 4000) -> str:
@@ -316,7 +317,7 @@ def sweep_orphans(folder: Path | None = None) -> list[Path]:
     for path in Path(folder or _scratch_parent()).glob(f"{SCRATCH_PREFIX}*-*"):
         pid = path.name[len(SCRATCH_PREFIX):].split("-", 1)[0]
         if pid.isdigit() and not _alive(int(pid)) and path.is_dir():
-            sweep_scratch(path)
+            sweep_scratch(path, kill_uid)
             swept.append(path)
     return swept
 

@@ -33,7 +33,6 @@ import dataclasses
 import difflib
 import math
 import os
-import shutil
 import signal
 import sys
 import time
@@ -52,8 +51,19 @@ from grader.batch.identity import Identity
 from grader.batch.intake import ClassList, IntakeError, IntakeOptions, read_class
 from grader.batch.late_apply import settle_late, with_late_section
 from grader.batch.names import shown, student_stem
+from grader.batch.pages import REPLAYS, replay_pages, write_assets, write_student_pages
 from grader.batch.progress import Progress
-from grader.batch.store import OutputBusy, exclusive, folder_seed, read_json, write_atomic, write_json
+from grader.batch.store import (
+    OutputBusy,
+    entries,
+    exclusive,
+    folder_seed,
+    move,
+    read_json,
+    write_atomic,
+    write_json,
+)
+from grader.batch.stored import well_formed
 from grader.batch.submissions import Student, Submission, pack, read_submission
 from grader.batch.summary import write_summary
 from grader.hidden.identity import hidden_set_identity
@@ -99,6 +109,7 @@ class BatchOptions:
     sandbox: str = "auto"
     budget_s: float = DEFAULT_BUDGET_S
     intake: IntakeOptions = field(default_factory=IntakeOptions)   # roster, times, late policy
+    similarity: bool = False         # --similarity: similarity.html after grading (grader/similarity)
 
     @classmethod
     def from_args(cls, args: argparse.Namespace) -> BatchOptions:
@@ -127,7 +138,7 @@ class BatchOptions:
                    executor=given.get("executor") or "local", scheduler=given.get("scheduler"),
                    sandbox=given.get("sandbox") or "auto",
                    budget_s=float(given.get("timeout") or DEFAULT_BUDGET_S),
-                   intake=IntakeOptions.from_args(given))
+                   intake=IntakeOptions.from_args(given), similarity=bool(given.get("similarity")))
 
 
 def parse_week(value: object) -> int:
@@ -202,6 +213,7 @@ def run_batch(options: BatchOptions, grade_fn: Callable[[dict], dict] | str | No
     try:
         with exclusive(out):
             options = dataclasses.replace(options, seed=folder_seed(out, options.seed))
+            write_assets(out)
             run = _Run(options, out, klass, stems, stream)
             try:
                 executor.run(grade_fn or "grader.batch.task:grade_task", run.plan(), run.finish)
@@ -209,6 +221,12 @@ def run_batch(options: BatchOptions, grade_fn: Callable[[dict], dict] | str | No
                 run.interrupted = True
             finally:
                 run.progress.close()
+            if options.similarity and not run.interrupted:    # before the summary, which links to it
+                from grader.similarity.command import after_batch
+                try:
+                    after_batch(klass, options.week, out, None if options.quiet else run.progress.stream)
+                except KeyboardInterrupt:
+                    run.interrupted = True
             return run.rebuild(executor.describe())
     except OutputBusy as exc:
         raise BatchError(str(exc)) from None
@@ -375,6 +393,7 @@ class _Run:
         if submission.notices and not result.get("notices"):   # not graded: what the intake noticed
             result["notices"] = list(submission.notices)
         identity = self._identity(submission.student)
+        result["grader_version"] = self.grader      # the batch's one version string (grader.batch.task)
         result["batch"] = {"student": sid, "cache_key": key, "submission_sha256": submission.sha256,
                            "grader": self.grader, "root": submission.root, "identity": identity.to_json(),
                            "hidden_set": None if self.hidden_set is None else
@@ -399,7 +418,8 @@ class _Run:
         (self.out / f"{stem}.json").unlink(missing_ok=True)
         html = bound_html(html) if isinstance(html, str) else None
         page = html or fallback_page(shown(sid), result)
-        write_atomic(self.out / f"{stem}.html", with_late_section(page, result.get("late")))
+        replays = replay_pages(outcome.get("value")) if html else {}
+        write_student_pages(self.out, stem, with_late_section(page, result.get("late")), replays)
         write_json(self.out / f"{stem}.json", result)
         status = result["status"]
         self.record[sid] = {"status": status, "cached": False, "seconds": result["timing"]["batch_seconds"],
@@ -436,7 +456,7 @@ class _Run:
         results = {}
         for student in self.students:
             stored = read_json(self.out / f"{self.stems[student.id]}.json")
-            if stored is not None and self._current(stored):
+            if well_formed(stored) and self._current(stored):  # a malformed one waits for its regrade
                 results[student.id] = stored
             else:
                 self._supersede(self.stems[student.id])
@@ -479,29 +499,21 @@ class _Run:
 
     def _supersede(self, stem: str) -> None:
         """Move a student's files from an older grading (or a half-written pair) to ``superseded/``, so
-        the output folder only ever shows the current grading; nothing is deleted."""
+        the output folder only ever shows the current grading; nothing is deleted but an older copy in
+        ``superseded/`` (the result itself is kept in ``history/`` first). No link under the output folder
+        is followed (grader.batch.store.move)."""
         stored = read_json(self.out / f"{stem}.json")
         if stored is not None:
             history.archive(self.out, stem, stored)
-        for name in (f"{stem}.json", f"{stem}.html", f"gradescope/{stem}"):
-            old = self.out / name
-            if old.exists():
-                target = self.out / "superseded" / name
-                target.parent.mkdir(parents=True, exist_ok=True)
-                if target.is_dir():
-                    shutil.rmtree(target)
-                os.replace(old, target)
+        for name in (f"{stem}.json", f"{stem}.html", f"gradescope/{stem}", f"{REPLAYS}/{stem}"):
+            move(self.out / name, self.out / "superseded" / name)
 
     def _prune_gradescope(self, current: set[str]) -> None:
         """Move Gradescope exports of students with no current result out of ``gradescope/``."""
         folder = self.out / "gradescope"
-        for entry in sorted(folder.iterdir()) if folder.is_dir() else []:
-            if entry.is_dir() and entry.name not in current:
-                target = self.out / "superseded" / "gradescope" / entry.name
-                target.parent.mkdir(parents=True, exist_ok=True)
-                if target.is_dir():
-                    shutil.rmtree(target)
-                os.replace(entry, target)
+        for name, is_folder in entries(folder):
+            if is_folder and name not in current:
+                move(folder / name, self.out / "superseded" / "gradescope" / name)
 
     def _current(self, stored: dict) -> bool:
         """True if a stored result was graded with this run's week, seed, grader and hidden set. An older

@@ -9,7 +9,8 @@ A task is a plain dict, the same for the local pool and for Dask workers on othe
 The submission travels as its bytes (hashed by the runner), so a remote worker needs no shared disk and
 grades exactly what was hashed. ``check_grader`` (set for Dask) makes a grading machine whose installed
 grader differs from the runner's refuse the task, so a stale worker cannot mix versions.
-The outcome is ``{"result": <result JSON>, "html": <report> | None}``.
+The outcome is ``{"result": <result JSON>, "html": <report> | None, "replays": {<file name>: <page>}}``
+(grader.batch.pages).
 """
 
 from __future__ import annotations
@@ -22,6 +23,8 @@ from pathlib import Path
 
 from grader.batch.cache import grader_fingerprint
 from grader.batch.grading_process import overlapped
+from grader.batch.names import student_stem
+from grader.batch.pages import ASSETS_FROM_REPLAY, replay_folder
 from grader.batch.submissions import unpack
 from grader.grading import grade_submission  # at import: a grading process loads it before its first task
 from simiam.course.weeks import get_week
@@ -71,26 +74,34 @@ def grade_first(task: dict) -> Callable[[], dict]:
     # replaced in the result's plain text, before the report renders (and escapes) it: never in HTML.
     renamed = replace_text(result, str(submission), task.get("display") or task["student"])
     assert isinstance(renamed, dict)  # replace_text keeps the shape of what it is given
-    return functools.partial(_with_report, renamed, traces, began)
+    if isinstance(expected, str) and expected:
+        # One version string in every file of a batch: the batch's grader fingerprint (what decides a
+        # regrade), before the report shows it. The check set's own hash stays in `check_set_hash`.
+        renamed["grader_version"] = expected
+    return functools.partial(_with_report, renamed, traces, began, student_stem(str(task["student"])))
 
 
-def _with_report(result: dict, traces: dict[str, dict], began: float) -> dict:
-    """The outcome: the result and its HTML report (None where the report package is not installed)."""
+def _with_report(result: dict, traces: dict[str, dict], began: float, stem: str) -> dict:
+    """The outcome: the result, its HTML report (None where the report package is not installed) and the
+    report's replay pages (grader.batch.pages: written under replays/<stem>/, sharing assets/)."""
     timing = tm if isinstance(tm := result.get("timing"), dict) else {}
     try:
-        from grader.report.html import render_report
+        from grader.report.html import render_report_pages
     except ImportError:  # a grader installed without its report package: the batch writes a plain page
-        html = None
+        html: str | None = None
+        replays: dict[str, str] = {}
     else:
-        html = render_report(result, traces)
+        html, replays = render_report_pages(result, traces, folder=replay_folder(stem),
+                                            assets=ASSETS_FROM_REPLAY)
     # the whole call, report writing included: what the batch adds is measured against this
     result["timing"] = {**timing, "grade_submission_seconds": round(time.monotonic() - began, 3)}
-    return {"result": result, "html": html}
+    return {"result": result, "html": html, "replays": replays}
 
 
 @overlapped(grade_first)
 def grade_task(task: dict) -> dict:
-    """Grade one submission and write its report: ``{"result": <result JSON>, "html": <page> | None}``."""
+    """Grade one submission and write its report: ``{"result": <result JSON>, "html": <page> | None,
+    "replays": {<file name>: <replay page>}}``."""
     return grade_first(task)()
 
 

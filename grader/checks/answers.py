@@ -1,6 +1,6 @@
 """Reading the student's untrusted answers: plain numbers, vectors and matrices, or a Mismatch saying why not.
 
-The worker sends JSON; a NaN or infinity arrives as the string "nan"/"inf" (see grader.inside.probes.plain)
+The worker sends JSON; a NaN or infinity arrives as the string "nan"/"inf" (see grader.inside.probing.plain)
 and an object the worker could not turn into numbers arrives as {"type": name}. Only real ints and
 floats pass.
 """

@@ -105,11 +105,12 @@ def theta_g(ctx: Context) -> Outcome:
         got = a.theta_g
         if got is None or ref.points_at(got, x_g - x, y_g - y) > 1e-6:
             off = "" if got is None else f", {fmt(ref.points_at(got, x_g - x, y_g - y))} rad off"
+            u_x, u_y = x_g - x, y_g - y
             raise Mismatch(
                 f"{_where([x, y, theta], [x_g, y_g])} your theta_g was "
-                f"{'missing' if got is None else fmt(got)}: it must point from the robot's position "
-                f"along the vector to the goal ({fmt(x_g - x)}, {fmt(y_g - y)}){off} (math.atan2 of its "
-                "y and x parts)"
+                f"{'missing' if got is None else fmt(got)}{off}, expected {fmt(ref.bearing(u_x, u_y))}: it "
+                "must point from the robot's position along the vector to the goal "
+                f"({fmt(u_x)}, {fmt(u_y)}), math.atan2(u_y, u_x) = math.atan2({fmt(u_y)}, {fmt(u_x)})"
             )
 
     quadrants = [

@@ -47,6 +47,32 @@ def _close(a: float, b: float, scale: float = 1.0) -> bool:
     return abs(a - b) <= 1e-6 * max(1.0, abs(b), scale)
 
 
+def _ratio(got: float, asked: float) -> float | None:
+    return got / asked if abs(asked) > 1e-9 else None
+
+
+def _near(a: float | None, b: float) -> bool:
+    return a is not None and abs(a - b) <= 1e-6 * max(1.0, abs(b))
+
+
+def round_trip_hint(v: float, w: float, got_v: float, got_w: float) -> str:
+    """What the numbers of one failed round trip show (issue 31): v and w scaled alike point at a factor
+    both wheels share (R, the 2 of 2R); only w reversed at the wheels' order; only w doubled or halved at
+    L/2 vs L. Otherwise it says how each came out, and guesses nothing."""
+    k_v, k_w = _ratio(got_v, v), _ratio(got_w, w)
+    if k_v is not None and k_w is not None and _near(k_v, k_w) and not _near(k_v, 1.0):
+        return (f"v and w both came out {fmt(k_v)} times the asked: a factor both wheels share is off, "
+                "such as R or the 2 of (2v +- wL)/(2R), not which wheel is which")
+    v_right = k_v is None and _close(got_v, v) or _near(k_v, 1.0)
+    if v_right and _near(k_w, -1.0):
+        return "v is right and w reversed: check which wheel is which (vel_r = (2v + wL)/(2R))"
+    if v_right and k_w is not None and (_near(k_w, 2.0) or _near(k_w, 0.5)):
+        return f"v is right and w came out {fmt(k_w)} times the asked: check L/2 vs L"
+    said = [f"{name} came out {fmt(k)} times the asked" if k is not None else f"{name} came out {fmt(got)}"
+            for name, k, got in (("v", k_v, got_v), ("w", k_w, got_w))]
+    return " and ".join(said) + ": write vel_r and vel_l from the manual's (2v + wL)/(2R) and (2v - wL)/(2R)"
+
+
 def round_trip(ctx: Context) -> Outcome:
     """The wheels must drive the robot at the (v, w) asked, through the provided diff_to_uni (the
     simulator's own): no expected wheel speeds are needed, and (diff_to_uni being one-to-one) nothing else
@@ -59,7 +85,7 @@ def round_trip(ctx: Context) -> Outcome:
             raise Mismatch(
                 f"with v = {fmt(v)}, w = {fmt(w)} your vel_r was {fmt(vel_r)} and vel_l {fmt(vel_l)}: "
                 f"these wheels drive the robot at v = {fmt(got_v)}, w = {fmt(got_w)} (diff_to_uni), not at "
-                f"the v = {fmt(v)}, w = {fmt(w)} asked (check which wheel is which, and L/2 vs L)"
+                f"the v = {fmt(v)}, w = {fmt(w)} asked ({round_trip_hint(v, w, got_v, got_w)})"
             )
 
     return run_property(
@@ -97,7 +123,8 @@ def spin(ctx: Context) -> Outcome:
         if not _close(vel_r, -vel_l) or abs(vel_r) < 1e-9:
             raise Mismatch(
                 f"with v = 0, w = {fmt(w)} your wheels were {fmt(vel_r)} and {fmt(vel_l)}; turning "
-                "on the spot needs opposite, non-zero wheel speeds"
+                "on the spot needs equal and opposite, non-zero wheel speeds (vel_l = -vel_r): "
+                + _spin_fault(vel_r, vel_l)
             )
 
     return run_property(
@@ -108,6 +135,17 @@ def spin(ctx: Context) -> Outcome:
         examples=[{"w": 1.0}],
         passed="v = 0 gives opposite wheels",
     )
+
+
+def _spin_fault(vel_r: float, vel_l: float) -> str:
+    """Which part of "equal and opposite, non-zero" the two wheels miss."""
+    if abs(vel_r) < 1e-9 and abs(vel_l) < 1e-9:
+        return "both are zero"
+    if vel_r * vel_l > 0:
+        return "both turn the same way"
+    if vel_r * vel_l == 0:
+        return "one of them is zero"
+    return f"they are opposite but not equal (one {fmt(abs(vel_r / vel_l))} times the other)"
 
 
 def linearity(ctx: Context) -> Outcome:
@@ -152,17 +190,32 @@ def ir_table(ctx: Context) -> Outcome:
     chunks = [rows[start : start + 5] for start in range(0, len(rows), 5)]
     chunks = [chunk + [rows[-1]] * (5 - len(chunk)) for chunk in chunks]
     raws = [[ref.table_raw(ctx.spec, v) for _, v in chunk] for chunk in chunks]
+    misses: list[tuple[float, float, int, float]] = []
     for chunk, raw, answer in zip(chunks, raws, _distances(ctx, raws), strict=False):
         for (d, v), r, got in zip(chunk, raw, answer, strict=False):
             err = abs(got - d)
             worst = max(worst, err / d)
-            if err > max(0.05 * d, 0.003):
-                raise Mismatch(
-                    f"for raw value {r} (the table's {fmt(v)} V at {fmt(d)} m) your distance was "
-                    f"{amount(got, 'm', 10.0)}, expected about {fmt(d)} m (divide by {fmt(divider)} to "
-                    "get volts)"
-                )
+            if err > max(0.05 * d, 0.003) and (d, v) not in [m[:2] for m in misses]:
+                misses.append((d, v, r, got))
+    if misses:
+        d, v, r, got = misses[0]
+        raise Mismatch(
+            f"for raw value {r} (the table's {fmt(v)} V at {fmt(d)} m) your distance was "
+            f"{amount(got, 'm', 10.0)}, expected about {fmt(d)} m ({_table_hint(misses, len(rows), divider)})"
+        )
     return Outcome(1.0, f"every table row within 5 % (worst {worst:.1%})", {"worst_relative_error": worst})
+
+
+def _table_hint(misses: list[tuple[float, float, int, float]], rows: int, divider: float) -> str:
+    """The divider hint only where the numbers point at the volts (issue 31): when most of the table's rows
+    come out right, raw -> volts works (a wrong divider moves every row) and the polynomial misses some."""
+    fit = rows - len(misses)
+    if fit * 2 > rows:
+        at = ", ".join(f"{fmt(v)} V" for _, v, _, _ in misses)
+        return (f"{fit} of the {rows} table rows are within 5 %, so your volts are right: the polynomial "
+                f"misses at {at}; check coeff, a degree-5 fit with every digit kept")
+    return (f"{len(misses)} of the {rows} table rows are off: check that you divide by {fmt(divider)} to get "
+            "volts, then that coeff is the table's degree-5 fit")
 
 
 def ir_simulator(ctx: Context) -> Outcome:

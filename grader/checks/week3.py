@@ -33,7 +33,7 @@ TRACKING_TURN = (1.0, 2.2)  # rad: the hidden tracking goal's turn from the star
 EXCLUDED_FILE = Path(__file__).parent / "expected" / "week3_tracking_excluded.json"
 OVERSHOOT_LIMIT = 0.10
 SETTLE = Limit("settle time", "s", SETTLE_LIMIT, above=False)
-OVERSHOOT = Limit("overshoot", "", OVERSHOOT_LIMIT, above=False)  # a fraction of theta_g
+OVERSHOOT = Limit("overshoot", "", OVERSHOOT_LIMIT, above=False, percent=True)  # a fraction of theta_g
 REACH_HINT = (
     "Hint: the robot steers by your theta_g, the wrapped error and the PID terms (their own checks say which "
     "one is wrong), and ensure_w must keep w; replay the run in the report to see where it goes"
@@ -150,6 +150,43 @@ def drawable(goal: tuple[float, float], turn: tuple[float, float]) -> bool:
     return math.hypot(*goal) >= 0.5 and turn[0] <= abs(ref.bearing(*goal)) <= turn[1]
 
 
+# A run from a start away from the origin (issue 31): every other run starts at (0, 0, 0), where a theta_g
+# that ignores the robot's position (atan2(y_g, x_g), a real student's) is right and collected every
+# behaviour point. The start lies in START_BOX, at least START_MIN from the origin; the goal obeys the
+# origin draws' rules (inside [-1.1, 1.1], at least 0.5 m and a turn of 0.35-pi rad from the start), and
+# the line from the start along the origin's bearing to the goal passes MISS_BY or more from it, so that
+# theta_g misses by a margin. tests/grader/test_week3_starts.py vets the draws as the other hidden draws
+# are vetted: the reference solution and a correct alternative reach each with time and clearance to spare.
+START_BOX = 0.6
+START_MIN = 0.4
+MISS_BY = 0.25
+
+
+def seeded_start_and_goal(seed: int, salt: str) -> tuple[tuple[float, float, float], tuple[float, float]]:
+    """A start pose away from the origin and a goal for it, drawn per seed (see START_BOX)."""
+    rng = random.Random(f"{seed}:{salt}:away")
+    while True:
+        start = (round(rng.uniform(-START_BOX, START_BOX), 2), round(rng.uniform(-START_BOX, START_BOX), 2),
+                 round(rng.uniform(-math.pi, math.pi), 2))
+        goal = (round(rng.uniform(-1.1, 1.1), 2), round(rng.uniform(-1.1, 1.1), 2))
+        if drawable_from(start, goal):
+            return start, goal
+
+
+def drawable_from(start: tuple[float, float, float], goal: tuple[float, float],
+                  turn: tuple[float, float] = (0.35, math.pi)) -> bool:
+    """A start and goal seeded_start_and_goal may give."""
+    x0, y0, theta0 = start
+    dx, dy = goal[0] - x0, goal[1] - y0
+    if math.hypot(x0, y0) < START_MIN or math.hypot(dx, dy) < 0.5:
+        return False
+    if not turn[0] <= abs(ref.wrap(ref.bearing(dx, dy) - theta0)) <= turn[1]:
+        return False
+    b = ref.bearing(*goal)  # what a theta_g from the origin steers to, wherever the robot is
+    ahead, beside = dx * math.cos(b) + dy * math.sin(b), abs(dy * math.cos(b) - dx * math.sin(b))
+    return ahead < 0 or beside >= MISS_BY
+
+
 @functools.cache
 def tracking_excluded() -> frozenset[tuple[float, float]]:
     """Goals the tracking check never draws: a correct controller's settle time or overshoot there is within
@@ -159,17 +196,22 @@ def tracking_excluded() -> frozenset[tuple[float, float]]:
     return frozenset((float(x), float(y)) for x, y in data["excluded"])
 
 
-def _go(ctx: Context, check_id: str, goal: tuple[float, float]) -> scenarios.Run:
+def _go(ctx: Context, check_id: str, goal: tuple[float, float],
+        start: tuple[float, float, float] | None = None) -> scenarios.Run:
     week = ctx.config
-    key = ("goal", goal, week.seconds)
+    key = ("goal", goal, week.seconds, start)
     if key not in ctx.memo:
         settings = week.settings.with_changes(goal=list(goal), d_stop=ROBOT_D_STOP, state="go_to_goal")
         ctx.memo[key] = scenarios.run(
-            ctx, f"goal ({goal[0]:g}, {goal[1]:g})", settings.as_dict(), week.seconds, goal=goal,
-            goal_radius=week.settings.d_stop,
+            ctx, f"goal ({goal[0]:g}, {goal[1]:g}){_from(start)}", settings.as_dict(), week.seconds,
+            start=start, goal=goal, goal_radius=week.settings.d_stop, estimate_start=start,
         )
         scenarios.keep(ctx, check_id, ctx.memo[key])
     return ctx.memo[key]
+
+
+def _from(start: tuple[float, float, float] | None) -> str:
+    return "" if start is None else f" from ({start[0]:g}, {start[1]:g}) facing {start[2]:g} rad"
 
 
 def _declared_goal(ctx: Context) -> tuple[float, float]:
@@ -184,31 +226,34 @@ def reach_goals(hidden: bool):
     check_id = "week3.go_to_goal." + ("other_goals" if hidden else "reach_goals")
 
     def reach(ctx: Context) -> Outcome:
-        goals = (
-            seeded_goals(ctx.seed, 3, "hidden")
+        # (goal, start): None starts at the world's (0, 0, 0); one run of each check starts elsewhere
+        away = seeded_start_and_goal(ctx.seed, "hidden" if hidden else "visible")
+        runs_to: list[tuple[tuple[float, float], tuple[float, float, float] | None]] = (
+            [(g, None) for g in seeded_goals(ctx.seed, 2, "hidden")] + [(away[1], away[0])]
             if hidden
-            else [_declared_goal(ctx), (0.0, -1.0), *seeded_goals(ctx.seed, 1, "visible")]
+            else [(_declared_goal(ctx), None), ((0.0, -1.0), None), (away[1], away[0])]
         )
         reached, lines, runs, done, margins = 0, [], [], [], Margins()
-        for goal in goals:
-            r = _go(ctx, check_id, goal)
+        for goal, start in runs_to:
+            r = _go(ctx, check_id, goal, start)
             done.append(r)
             scenarios.add_margins(margins, r, ctx.config.seconds)
             ok = r.reached and r.collision is None and not r.problem
             reached += ok
+            where = f"({goal[0]:g}, {goal[1]:g}){_from(start)}"
             if ok:
-                lines.append(f"({goal[0]:g}, {goal[1]:g}) reached in {r.t_goal:.1f} s")
+                lines.append(f"{where} reached in {r.t_goal:.1f} s")
             else:
                 why = r.problem or (
                     f"collided at t = {r.collision['t']:.2f} s"
                     if r.collision
                     else f"not reached in 30 s, {r.metrics['final_distance']:.2f} m away at the end"
                 )
-                lines.append(f"({goal[0]:g}, {goal[1]:g}) {why}")
-            runs.append({**r.metrics, "problem": r.problem})
-        missed = reached < len(goals) and not any(r.problem for r in done)
+                lines.append(f"{where} {why}")
+            runs.append({**r.metrics, "problem": r.problem, "start": list(start) if start else None})
+        missed = reached < len(runs_to) and not any(r.problem for r in done)
         return Outcome(
-            reached / len(goals),
+            reached / len(runs_to),
             "; ".join(lines) + (f". {REACH_HINT}" if missed else ""),
             {"runs": runs, "traces": scenarios.trace_keys(done), "margins": margins.to_json()},
             status=scenarios.status_of(done),

@@ -213,10 +213,10 @@ def _one_switch(where: str, state: str, want: str, item: dict) -> None:
     happened counts (switches_seen: also a controller changed around switch_to_state), not only what the
     course's switch_count says."""
     should = int(want != state)
-    # whole numbers as the worker's JSON gives them (2.0); anything else says nothing
+    # whole numbers as the worker's JSON gives them (2.0); anything else says nothing. Compared before any
+    # conversion: a count no float holds is refused at the pipe (answer_bounds), and refused here too
     counts = [int(c) for c in (item.get("switches"), item.get("seen"))
-              if isinstance(c, (int, float)) and not isinstance(c, bool) and math.isfinite(c)
-              and c == int(c) and 0 <= c <= 10**6]
+              if isinstance(c, (int, float)) and not isinstance(c, bool) and 0 <= c <= 10**6 and c == int(c)]
     done = max(counts, default=should)
     if done == should:
         return

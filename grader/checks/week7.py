@@ -391,17 +391,39 @@ def navigate(ctx: Context, check_id: str, world: World, goal: tuple[float, float
 
 
 def navigate_hint(runs: list[scenarios.Run]) -> str:
-    """The hint for runs that missed their goal. When d_prog never moved in a run, the automaton never
-    calls set_progress_point: progress_made then always holds and no threshold helps, so the general
-    hint's "tune d_at_obs and d_unsafe" would send the student the wrong way (issue 21)."""
+    """The hint for runs that missed their goal. When d_prog never moved in a run, no threshold helps, so
+    the general hint's "tune d_at_obs and d_unsafe" would send the student the wrong way (issue 21). What it
+    says follows from the trace (issue 31): progress_made holding every time it was checked (d_prog never
+    came down: no set_progress_point when progress is made) reads differently from progress_made failing
+    after d_prog was set (its comparison never counts a step as progress again)."""
     for r in runs:
         kept = [d for d in r.trace.steps.get("d_prog", []) if type(d) in (int, float)]
         if len(kept) > 1 and all(d == kept[0] for d in kept):
-            return (f"Hint: d_prog stayed at {fmt(kept[0])} m the whole run: your automaton never calls "
-                    "self.set_progress_point() when it makes progress, so progress_made always holds and the "
-                    "robot never turns to the wall (no tuning of d_at_obs or d_unsafe helps); the replay "
-                    "plots d_prog")
+            return stuck_progress_hint(kept[0], r.trace.steps.get("progress_made", []))
     return NAVIGATE_HINT
+
+
+def stuck_progress_hint(d_prog: float, progress: list) -> str:
+    """The hint for a run whose d_prog stayed at `d_prog`, from what progress_made returned each step
+    (True, False, or None where it was not checked)."""
+    held = sum(1 for p in progress if p is True)
+    failed = sum(1 for p in progress if p is False)
+    stayed = f"Hint: d_prog stayed at {fmt(d_prog)} m the whole run"
+    if held + failed == 0:
+        return (f"{stayed} and your automaton never checked progress_made: it must, in go_to_goal and "
+                "follow_wall, to know when to follow the wall and when to leave it")
+    if failed == 0:
+        return (f"{stayed} and progress_made held all {held} times it was checked: d_prog never came down to "
+                "the distance the robot reached, so progress_made always holds and the robot never turns to "
+                "the wall (no tuning of d_at_obs or d_unsafe helps). Check that your automaton calls "
+                "self.set_progress_point() when it makes progress, and set_progress_point's own check; the "
+                "replay plots d_prog")
+    return (f"{stayed}, and progress_made was False {failed} of the {held + failed} times it was "
+            "checked: no step came closer to the goal than d_prog as your progress_made counts it, so "
+            "nothing lowered d_prog (no tuning of d_at_obs or d_unsafe helps). Check progress_made's "
+            "comparison (its own check: the estimate exactly at d_prog, a step with no encoder tick, is "
+            "progress); the "
+            "replay plots d_prog and progress_made")
 
 
 def release_goal(ctx: Context) -> Outcome:

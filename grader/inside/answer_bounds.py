@@ -7,7 +7,9 @@ could make the grading process hold gigabytes. The bounds here are on what an an
 
 - one answer: at most MAX_ANSWER_BYTES on the wire, values nested at most MAX_DEPTH deep (as
   protocol.to_json refuses deeper ones), at most MAX_VALUES values (lists, dicts, keys, strings, numbers)
-  and MAX_TEXT characters of text, integers of at most MAX_INT_BITS bits (as to_json);
+  and MAX_TEXT characters of text, integers no larger in magnitude than MAX_NUMBER, the largest a float
+  holds (as to_json): every check may turn a number it is given into a float, and one beyond it would
+  raise OverflowError in trusted code (issue 30);
 - the answers the grader keeps together (one `probe_many` request, or all the rounds of one property
   check): an AnswerBudget of HELD_VALUES values and HELD_TEXT characters.
 
@@ -22,13 +24,15 @@ than the bounds themselves.
 
 from __future__ import annotations
 
+import sys
 from typing import Any, NamedTuple
 
 MAX_ANSWER_BYTES = 256 * 1024  # one line from the worker (requests keep protocol.MAX_MESSAGE)
 MAX_DEPTH = 32                 # levels below the value, as protocol.to_json
 MAX_VALUES = 4096              # lists, dicts, keys, strings, numbers, booleans and nulls of one answer
 MAX_TEXT = 64 * 1024           # characters of strings and keys of one answer
-MAX_INT_BITS = 1024            # as protocol.to_json: no number of this course is larger
+MAX_INT_BITS = 1024            # a cheap first test; MAX_NUMBER is the bound
+MAX_NUMBER = int(sys.float_info.max)  # the largest integer a float holds: float(n) never overflows within it
 HELD_VALUES = 8 * MAX_VALUES   # what one request, or one property check, keeps of a student's answers
 HELD_TEXT = 4 * MAX_TEXT
 
@@ -74,8 +78,8 @@ def weigh(value: Any, max_depth: int = MAX_DEPTH, max_values: int = MAX_VALUES,
             else:
                 todo.extend((inner, depth + 1) for inner in item)
         elif kind is int:
-            if item.bit_length() > MAX_INT_BITS:
-                raise OutOfBounds("an integer too large to be a number of this course")
+            if too_large(item):
+                raise OutOfBounds("an integer too large to be a number of this course (no float holds it)")
         elif item is not None and kind is not float and kind is not bool:
             raise OutOfBounds(f"a {kind.__name__}, which JSON does not have")
         if values > max_values:
@@ -83,6 +87,12 @@ def weigh(value: Any, max_depth: int = MAX_DEPTH, max_values: int = MAX_VALUES,
         if text > max_text:
             raise OutOfBounds(f"a value holding more than {max_text} characters of text")
     return Weight(values, text)
+
+
+def too_large(number: int) -> bool:
+    """Whether an integer is beyond what a float holds (its bits first: a million-digit one costs no more
+    than a comparison)."""
+    return number.bit_length() > MAX_INT_BITS or not -MAX_NUMBER <= number <= MAX_NUMBER
 
 
 _FIELDS = frozenset(("id", "ok", "value", "error"))

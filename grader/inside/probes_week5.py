@@ -1,5 +1,5 @@
 """Week 5's probes (they run INSIDE the worker and import nothing trusted; grader/inside/probes.py lists
-them with its own).
+them with the other weeks').
 
 - `blend`: AOandGTG.execute with u_ao and u_gtg chosen by the grader: the controller's AvoidObstacles is
   replaced by one that hands over the grader's u_ao, and the goal sets u_gtg. What comes back is the
@@ -12,10 +12,10 @@ from __future__ import annotations
 
 from typing import Any
 
+from grader.inside.probing import exercises, plain, robot_for
 from simiam.control.controller import Inputs
 from simiam.control.pose import Pose2D
 from simiam.control.robot_view import RobotView
-from simiam.course.weeks import get_week
 
 
 class _GivenAvoid:
@@ -30,17 +30,16 @@ class _GivenAvoid:
 
 
 def _robot(sub, week: int, distances: list[float]) -> RobotView:
-    robot = RobotView(get_week(week).spec, sub)
+    robot = robot_for(sub, week)
     setattr(robot, "get_ir_distances", lambda: list(distances))  # noqa: B010 - the conversion is week 2's
     return robot
 
 
+@exercises("ao_and_gtg.py:AOandGTG.execute")
 def blend(sub, week: int, calls: list[dict]) -> list[dict[str, Any]]:
     """For each call {"u_ao": [x, y], "pose": [x, y, theta], "goal": [x, y]}: a fresh AOandGTG's execute
     with that u_ao (u_gtg = goal - position). Returns per call the blend u_ao_gtg, the heading theta_g and
     the u_gtg/u_ao the controller kept."""
-    from grader.inside.probes import plain
-
     out = []
     cls = sub.module("ao_and_gtg").AOandGTG
     for call in calls:
@@ -57,14 +56,13 @@ def blend(sub, week: int, calls: list[dict]) -> list[dict[str, Any]]:
     return out
 
 
+@exercises("qb_supervisor.py:QBSupervisor.execute")
 def switching(sub, week: int, cases: list[dict]) -> list[dict[str, Any]]:
     """For each case {"state": first state, "distances": [5 IR distances], "at_goal": bool}: a fresh
     QBSupervisor (is_blending off, the goal at the estimate's start or 1 m away), switched to `state`, then
     one execute. Returns per case the state it ended in, how many switches it counted (switch_count), how
     many happened (switches_seen: also a controller changed around switch_to_state) and the states switched
     into, in order."""
-    from grader.inside.probes import plain
-
     out = []
     for case in cases:
         robot = _robot(sub, week, case["distances"])

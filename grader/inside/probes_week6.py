@@ -5,20 +5,20 @@ from __future__ import annotations
 
 from typing import Any
 
+from grader.inside.probing import exercises, plain, robot_for, supervisor_for
 from simiam.control.controller import Inputs
 from simiam.control.pose import Pose2D
 
 __all__ = ["follow_wall", "wall_settings"]
 
 
+@exercises("follow_wall.py:FollowWall.execute")
 def follow_wall(sub, week: int, distances: list, pose: list, direction: str, d_fw: float, v: float = 0.15,
                 dt: float = 0.05) -> Any:
     """FollowWall.execute once with the IR distances fixed to `distances`: the wall points and vectors.
 
     The IR points come from FollowWall's own (provided) apply_sensor_geometry, as in the course."""
-    from grader.inside.probes import _robot, plain
-
-    robot = _robot(sub, week)
+    robot = robot_for(sub, week)
     setattr(robot, "get_ir_distances", lambda: list(distances))  # noqa: B010 - the conversion is checked elsewhere
     ctrl = sub.module("follow_wall").FollowWall()
     inputs = Inputs(v=v, x_g=0.0, y_g=0.0, theta_d=0.0, direction=direction, d_fw=d_fw)
@@ -28,10 +28,9 @@ def follow_wall(sub, week: int, distances: list, pose: list, direction: str, d_f
             **{name: plain(getattr(ctrl, name, None)) for name in names}}
 
 
+@exercises("qb_supervisor.py:QBSupervisor.__init__")
 def wall_settings(sub, week: int) -> Any:
     """What QBSupervisor.__init__ set for following a wall: d_fw and fw_direction."""
-    from grader.inside.probes import _supervisor, plain
-
-    supervisor, _ = _supervisor(sub, week)
+    supervisor, _ = supervisor_for(sub, week)
     return {"d_fw": plain(getattr(supervisor, "d_fw", None)),
             "fw_direction": plain(getattr(supervisor, "fw_direction", None))}

@@ -14,6 +14,7 @@ import math
 import re
 from typing import Any
 
+from grader.inside.answer_bounds import too_large
 from grader.inside.caps import clean
 
 MAX_MESSAGE = 4 * 1024 * 1024  # bytes per message (a 30 s scenario step command is ~200 bytes)
@@ -150,8 +151,8 @@ def to_json(value: Any, *, depth: int = 0) -> Any:
     if value is None or kind is bool or kind is str:
         return value
     if kind is int:
-        if value.bit_length() > 1024:
-            raise NotJSON("an integer too large to be a number of this course")
+        if too_large(value):  # what a float holds, as the grader's side checks (answer_bounds)
+            raise NotJSON("an integer too large to be a number of this course (no float holds it)")
         return value
     if kind is dict:
         out = {}

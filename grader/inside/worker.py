@@ -87,8 +87,13 @@ def _bootstrap(config: dict) -> None:
     config["refused_limits"] = refused or []  # reported in the ready message, before any student code
     config["seccomp"] = install()  # no network sockets, even where bubblewrap is missing
     os.environ.clear()
-    os.environ.update({"PATH": "/usr/bin:/bin", "HOME": "/tmp", "LANG": "C.UTF-8",
+    home = config.get("private") or "/tmp"   # a plain subprocess's own folder (grader.sandbox.workdir)
+    os.environ.update({"PATH": "/usr/bin:/bin", "HOME": home, "LANG": "C.UTF-8",
                        "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"})
+    if config.get("private"):
+        os.environ["TMPDIR"] = home
+        if "tempfile" in sys.modules:   # it may have picked its folder already
+            vars(sys.modules["tempfile"])["tempdir"] = None
 
 
 def _stdio_channel(config: dict) -> None:

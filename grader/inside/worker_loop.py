@@ -65,7 +65,8 @@ class _Worker:
 
         self.brain = None
         _join_core(request.get("cpu"))
-        self.brain = LocalBrain(self.submission(), get_week(self.week), request.get("settings") or None)
+        self.brain = LocalBrain(self.submission(), get_week(self.week), request.get("settings") or None,
+                                start=_pose(request.get("start")))
         return None
 
     def op_brain_step(self, request: dict) -> Any:
@@ -124,6 +125,17 @@ class _Worker:
             message = f"your code called sys.exit({message})"
         return {"type": type(exc).__name__[:100], "message": message[:1000], "file": file, "line": line,
                 "frames": frames[-20:]}
+
+
+def _pose(value: object) -> tuple[float, float, float] | None:
+    """The start pose the grader sent with brain_start: three finite numbers, else None (the week's)."""
+    import math
+
+    if not isinstance(value, list) or len(value) != 3:
+        return None
+    if not all(type(c) in (int, float) and math.isfinite(c) for c in value):
+        return None
+    return float(value[0]), float(value[1]), float(value[2])
 
 
 def _join_core(cpu: object) -> None:

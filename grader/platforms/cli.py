@@ -19,6 +19,7 @@ from pathlib import Path
 from simiam.course.weeks import get_week, week_numbers
 
 COMMANDS = ("handout", "package", "selfcheck")
+PLATFORMS = ("gradescope", "prairielearn", "coursera")  # `grade package PLATFORM`; grade --help lists them
 
 
 def _week(text: str) -> int:
@@ -37,7 +38,7 @@ def _parser() -> argparse.ArgumentParser:
     h.add_argument("--out", type=Path, required=True, help="folder that receives weekN/ and weekN.zip")
     h.add_argument("--course", type=Path, default=None, help="the course checkout (default: here)")
     k = sub.add_parser("package", help="an autograder for Gradescope, PrairieLearn or Coursera")
-    k.add_argument("platform", choices=("gradescope", "prairielearn", "coursera"))
+    k.add_argument("platform", choices=PLATFORMS)
     k.add_argument("week", type=_week)
     k.add_argument("--out", type=Path, required=True,
                    help="gradescope: the zip to write; prairielearn, coursera: a new folder")

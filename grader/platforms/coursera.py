@@ -19,6 +19,7 @@ the per-check table learners see. Hidden checks count, but their message only sa
 from __future__ import annotations
 
 import argparse
+import contextlib
 import html
 import json
 import os
@@ -31,7 +32,14 @@ from pathlib import Path
 from grader.batch.store import write_atomic
 from grader.platforms.bundle import stage_common
 from grader.platforms.handout import copy_handout
-from grader.platforms.official import SubmissionRefused, cap, grade_upload, read_config, read_secret
+from grader.platforms.official import (
+    NoSandbox,
+    SubmissionRefused,
+    cap,
+    grade_upload,
+    read_config,
+    read_secret,
+)
 from simiam.course.weeks import hidden_variants
 
 TEMPLATES = Path(__file__).with_name("templates")
@@ -121,8 +129,10 @@ _STYLE = ("table{border-collapse:collapse} th,td{border:1px solid #ccc;padding:3
 
 def run(shared: Path, home: Path, part_id: str | None) -> int:
     """Grade shared/submission into shared/feedback.json and shared/htmlFeedback.html with the image's files
-    in `home` (config.json, secret/, handout/). Never raises: a failure of the grader itself still writes a
-    feedback that says so (the traceback goes to stderr, which only course staff see)."""
+    in `home` (config.json, secret/, handout/). A failure of the grader itself still writes a feedback that
+    says so (the traceback goes to stderr, which only course staff see) and returns non-zero: 1, or 3 where
+    student code would run under the grader's own uid with no sandbox (official.NoSandbox: refused before
+    any student code runs). The feedback comes from the grader's own result only."""
     try:
         config = read_config(home / "config.json")
         secret = read_secret(home / "secret")
@@ -142,12 +152,24 @@ def run(shared: Path, home: Path, part_id: str | None) -> int:
         write_atomic(shared / "feedback.json", json.dumps(payload, allow_nan=False) + "\n")
         print(f"graded: fractionalScore {payload['fractionalScore']:.4f}", file=sys.stderr)
         return 0
+    except NoSandbox as exc:   # fail closed: no student code ran; the staff's log says what to enable
+        print(f"simiam grader: {exc}", file=sys.stderr)
+        _failed(shared, "The grader is not set up to run code safely on this grading machine, so your code "
+                        "was not run and nothing was graded; your course staff can see why and will regrade.")
+        return 3
     except Exception:   # the grader's own failure: say so, keep the traceback for the staff's log
         traceback.print_exc(file=sys.stderr)
-        write_atomic(shared / "feedback.json", json.dumps({
-            "fractionalScore": 0.0, "feedback": "The grader itself failed, not because of your code; your "
-                                                "instructor can see why and will regrade."}) + "\n")
+        _failed(shared, "The grader itself failed, not because of your code; your instructor can see why and "
+                        "will regrade.")
         return 1
+
+
+def _failed(shared: Path, text: str) -> None:
+    """The feedback of a grading that failed: this text and 0 points, replacing whatever feedback.json and
+    page are there (the entrypoint, too, trusts no feedback after a non-zero exit)."""
+    with contextlib.suppress(OSError):
+        (shared / "htmlFeedback.html").unlink()
+    write_atomic(shared / "feedback.json", json.dumps({"fractionalScore": 0.0, "feedback": text}) + "\n")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -13,7 +13,7 @@ from pathlib import Path
 
 from grader.platforms.archive import write_zip
 from simiam.course.blocks import find_blocks
-from simiam.course.placeholders import placeholder_for
+from simiam.course.weeks import placeholder_for
 
 # Solution lines shorter than this are too generic to call a leak ("return v, w", "pass").
 _MIN_LEAK_CHARS = 16

@@ -8,9 +8,14 @@ A bundle (Gradescope zip, PrairieLearn image) carries two files besides the pack
 
 The grading process reads the secret as root. Student code never can: in the bubblewrap sandbox the folder
 is simply not there (only /usr, the Python environment and the spliced submission are bound), and without
-bubblewrap the worker drops to a dedicated unprivileged uid, for which a 0700 root folder is closed. Where
-the grader itself does not run as root (a local trial), the worker keeps the grader's uid and *could* read
-the secret; `isolation_note` in every result says which case held.
+bubblewrap the worker drops to a dedicated unprivileged uid, for which a 0700 root folder is closed.
+
+Where neither holds (no bubblewrap sandbox, and a grader that is not root: Coursera's containers when they
+forbid namespaces, any platform like them), student code would run under the grader's own uid with nothing
+between them: it could read the secret and write the feedback file the platform takes as the grade. Official
+grading then fails closed (issue 30 item 4): `grade_upload` raises NoSandbox, with a message for the course
+staff saying what to enable, before any student code runs; the entrypoints report a grader failure, never
+a grade. `isolation_note` in every result that was graded says which isolation held.
 """
 
 from __future__ import annotations
@@ -33,6 +38,37 @@ GRADESCOPE_VISIBILITY = ("hidden", "after_due_date", "after_published", "visible
 
 class BundleBroken(RuntimeError):
     """The bundle's own files are missing or unreadable: an instructor's problem, never a student's."""
+
+
+class NoSandbox(BundleBroken):
+    """This machine would run student code under the grader's own uid with no sandbox: official grading
+    refuses (the message, for the course staff, says what to enable)."""
+
+
+def refuse_unsandboxed() -> None:
+    """NoSandbox unless student code can be kept from the grader here: bubblewrap works, or the grader runs
+    as root with a spare uid mapped (the worker then drops to a dedicated uid that cannot read the secret or
+    the results; a root with no uid to drop to, as in a single-uid user namespace, is refused too)."""
+    from grader.sandbox import isolation
+    from grader.sandbox.capabilities import is_root
+
+    works, why = isolation.bwrap_works()
+    if works:
+        return
+    if is_root():
+        if isolation.pick_uid() is not None:
+            return
+        why += "; and though the grader is root, no spare uid is mapped here for the worker to drop to"
+    uid = os.geteuid() if hasattr(os, "geteuid") else "unknown"
+    raise NoSandbox(
+        f"official grading refused: student code would run under the grader's own uid ({uid}) with no "
+        f"sandbox ({why}), so it could read the secret seed and hidden set and write the feedback file "
+        "itself. Nothing was graded. To grade here, enable one of: (1) namespaces for bubblewrap in the "
+        "grading container (a grader that is not root needs unprivileged user namespaces, which Docker's "
+        "default seccomp profile refuses: --security-opt seccomp=unconfined, or a platform setting that "
+        "allows them); (2) run the grader as root, so that student code runs under a dedicated unprivileged "
+        "uid. Or grade this week on Gradescope or PrairieLearn, which run the grader as root. See "
+        "docs/platforms.md (isolation per platform).")
 
 
 @dataclass(frozen=True)
@@ -99,7 +135,9 @@ def grade_upload(upload: Path, secret: Secret, fill_from: Path | None = None,
     notice for each unless `note_filled` is false (a platform whose students cannot submit those files).
 
     Returns the contract's result; a refused upload (no course files, hostile zip, ...) raises
-    SubmissionRefused with the reason to show the student."""
+    SubmissionRefused with the reason to show the student, and NoSandbox (before any student code runs)
+    where student code would run under the grader's own uid with no sandbox."""
+    refuse_unsandboxed()
     from grader.grading import grade_submission
     from simiam.course.shipped import files_to_write, missing_note
 
@@ -168,5 +206,5 @@ def main(argv: list[str] | None = None) -> int:
 if __name__ == "__main__":
     raise SystemExit(main())
 
-__all__ = ["BundleBroken", "Secret", "SubmissionRefused", "cap", "grade_upload", "lock_down",
+__all__ = ["BundleBroken", "NoSandbox", "Secret", "SubmissionRefused", "cap", "grade_upload", "lock_down",
            "read_config", "read_secret", "write_secret"]

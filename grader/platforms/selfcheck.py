@@ -28,6 +28,7 @@ from pathlib import Path
 from grader.grading import DEFAULT_SEED, ROOT, grade_submission
 from grader.margins import passes, words
 from grader.platforms.wrong_versions import MistakeError, apply_mistake
+from grader.untrusted import printable
 
 
 @dataclass
@@ -162,21 +163,22 @@ def _expectations(course: Path, weeks: list[int], wrong: Path | None, tmp: Path,
             exps.append(Expectation(f"stubs week{week} (nothing to code: full marks)", week, folder, True,
                                     full_marks))
     wrong = wrong if wrong is not None else course / "tests" / "data" / "wrong"
-    for patch in sorted(wrong.glob("*.patch")) if wrong.is_dir() else []:
-        try:
-            mistake, folder = apply_mistake(patch, course / "solutions", tmp / "wrong" / patch.stem)
-        except MistakeError as exc:
-            out(f"FAIL  wrong {patch.stem}: {exc}")
+    for n, patch in enumerate(sorted(wrong.glob("*.patch")) if wrong.is_dir() else []):
+        name = printable(patch.stem, multiline=False)
+        try:  # every bad wrong version is its own FAIL line, and the others still run
+            mistake, folder = apply_mistake(patch, course / "solutions", tmp / "wrong" / str(n))
+        except (MistakeError, OSError) as exc:
+            out(f"FAIL  wrong {name}: {printable(str(exc), multiline=False)}")
             exps.append(None)
             continue
         if mistake.week not in weeks:
             continue
         if mistake.aims is None:
-            out(f"FAIL  wrong {patch.stem}: no '# aims:' line naming the checks it must lose")
+            out(f"FAIL  wrong {name}: no '# aims:' line naming the checks it must lose")
             exps.append(None)
             continue
         what = ", ".join(sorted(mistake.aims)) or "nothing (a correct alternative)"
-        exps.append(Expectation(f"wrong {patch.stem} (loses {what})", mistake.week, folder, False,
+        exps.append(Expectation(f"wrong {name} (loses {what})", mistake.week, folder, False,
                                 loses_exactly(mistake.aims), caught_margins(mistake.aims),
                                 wrong_version=True))
     return exps

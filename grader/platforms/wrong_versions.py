@@ -18,7 +18,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 _HUNK = re.compile(r"@@ -(\d+)(?:,(\d+))? \+(\d+)(?:,(\d+))? @@")
-_PATH = re.compile(r"[ab]/solutions/week(\d)/([\w.]+)$")
+# a file of the week's folder by its plain name: no folder part, no `.` or `..`, no leading dot
+_PATH = re.compile(r"[ab]/solutions/week(\d)/(\w[\w.]*)$")
 AIMS = "# aims:"
 
 
@@ -46,8 +47,16 @@ class Mistake:
 
 def read_mistake(path: Path) -> Mistake:
     """Parse a `.patch` file (the title line, an optional `# aims:` line, then a unified diff against
-    solutions/weekN)."""
-    lines = path.read_text().splitlines(keepends=True)
+    solutions/weekN). Anything that is not such a file (a folder named x.patch, text that is not UTF-8, a
+    file that cannot be read) is a MistakeError saying so, as a patch that does not parse is."""
+    if not path.is_file():
+        raise MistakeError(f"{path}: not a file (a wrong version is one .patch file)")
+    try:
+        lines = path.read_bytes().decode("utf-8").splitlines(keepends=True)
+    except UnicodeDecodeError as exc:
+        raise MistakeError(f"{path}: not UTF-8 text (byte {exc.start + 1})") from None
+    except OSError as exc:
+        raise MistakeError(f"{path}: cannot be read ({exc.strerror or exc})") from None
     if not lines or not lines[0].startswith("# "):
         raise MistakeError(f"{path}: the first line must be '# <what the mistake is>'")
     why = lines[0][2:].strip()
@@ -131,13 +140,16 @@ def apply_hunks(text: str, hunks: list[Hunk], where: str) -> str:
 
 
 def apply_mistake(patch: Path, solutions: Path, into: Path) -> tuple[Mistake, Path]:
-    """A fresh copy of `solutions`/weekN at `into` with the mistake of `patch` applied."""
+    """A fresh copy of `solutions`/weekN at `into` with the mistake of `patch` applied. Every file it changes
+    is a regular file of that copy (read_mistake allows plain names only; a link is refused too)."""
     mistake = read_mistake(patch)
+    if not (solutions / f"week{mistake.week}").is_dir():
+        raise MistakeError(f"{patch}: solutions/week{mistake.week} does not exist")
     shutil.copytree(solutions / f"week{mistake.week}", into, ignore=shutil.ignore_patterns("__pycache__"))
     for file, hunks in mistake.files.items():
         target = into / file
-        if not target.exists():
-            raise MistakeError(f"{patch}: solutions/week{mistake.week}/{file} does not exist")
+        if target.is_symlink() or not target.is_file() or target.parent != into:
+            raise MistakeError(f"{patch}: solutions/week{mistake.week}/{file} is not a file of the solution")
         where = f"{patch.name} on solutions/week{mistake.week}/{file}"
-        target.write_text(apply_hunks(target.read_text(), hunks, where))
+        target.write_text(apply_hunks(target.read_text(encoding="utf-8"), hunks, where), encoding="utf-8")
     return mistake, into

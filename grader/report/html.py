@@ -26,6 +26,7 @@ import jinja2
 from markupsafe import Markup
 
 from grader.report import svg
+from grader.report.loader import PrecompiledLoader
 from grader.report.signal_plots import declared_plots
 from grader.untrusted import printable
 from simiam import safe_write
@@ -49,6 +50,9 @@ RUN_LABELS = ("label", "goal", "theta_d", "world")
 # Rows per embedded replay: at most 1000, and about 3000 over the whole report, so a report with four 60 s
 # runs stays well under 1 MB (each thinned to every 3rd step); short runs keep every step.
 REPLAY_ROWS, REPORT_ROWS = 1000, 3000
+# A batch's student page (render_report_pages) aims at PAGE_BYTES: its plots are drawn compact with the
+# first number of points a line that fits (what the student's code printed can still take it over).
+PAGE_BYTES, PAGE_PLOT_POINTS = 150_000, (250, 150, 80)
 STATUS_WORDS = {"passed": "passed", "failed": "failed", "error": "error", "timeout": "timed out"}
 # Pages with no script of their own (the class summary, the fallback page) get this policy: even if some
 # text escaped the templates' autoescape, a browser would run no script and load nothing from it.
@@ -65,11 +69,9 @@ def page_text(value: Any) -> Any:
 @functools.lru_cache(maxsize=1)
 def _env() -> jinja2.Environment:
     """The report's environment, built once per process: its templates compile on first use and stay
-    compiled (36 ms a report otherwise); a fresh process takes them precompiled (grader.report.precompiled)
+    compiled (36 ms a report otherwise); a fresh process takes them precompiled (grader.report.loader)
     where they are up to date. Nothing in it depends on a result: every value reaches the
     templates as a render argument, still autoescaped and passed through `page_text`."""
-    from grader.report.precompiled import PrecompiledLoader
-
     env = jinja2.Environment(loader=PrecompiledLoader("grader.report", "templates"), autoescape=True,
                              undefined=jinja2.ChainableUndefined, trim_blocks=True, lstrip_blocks=True,
                              finalize=page_text)
@@ -331,6 +333,42 @@ def render_report(result: dict, traces: dict[str, dict] | None = None, *, replay
         csp = STATIC_PAGE_CSP
     return _env().get_template("report.html.j2").render(summary=_summary(result, views), checks=views,
                                                         csp=csp)
+
+
+def render_report_pages(result: dict, traces: dict[str, dict] | None, *, folder: str,
+                        assets: str) -> tuple[str, dict[str, str]]:
+    """A report whose replays are pages of their own, as a batch writes it for each student: returns the
+    report and its replay pages (file name -> HTML) to be written into `folder` (a URL relative to the
+    report). The report draws its plots compact (grader.report.svg.compact_plots, with fewer points a
+    line where the page would exceed PAGE_BYTES) and links each run's
+    replay; each replay page loads the replay's script and styles from `assets` (a URL relative to the
+    replay page: simiam.viewer.replay.shared_assets) and holds the rows the self-contained report would
+    embed, so the same run plays."""
+    from simiam.viewer.replay import TraceFormatError, render_replay
+
+    traces = traces or {}
+    max_rows = max(300, min(REPLAY_ROWS, REPORT_ROWS // max(1, len(traces))))
+    pages: dict[str, str] = {}
+    hrefs: dict[str, str] = {}
+    for key, trace in traces.items():
+        if not isinstance(trace, dict) or len((trace.get("steps") or {}).get("t") or []) < 2:
+            continue  # no replay for a run that never started (the report says why)
+        name = f"{_slug(key)}.html"
+        if name in pages:  # two keys with one slug: the later one numbered
+            name = f"{_slug(key)}-{len(pages)}.html"
+        meta = trace.get("meta") or {}
+        title = f"{key.split('#', 1)[0]}: {meta.get('check_label') or key}"
+        try:
+            pages[name] = render_replay(trace, title=title, max_rows=max_rows, assets=assets)
+        except TraceFormatError:
+            continue  # the report's run section has no replay link then
+        hrefs[key] = f"{folder}/{name}"
+    for points in PAGE_PLOT_POINTS:  # fewer points a line until the page fits its budget
+        with svg.compact_plots(points):
+            page = render_report(result, traces, replays="none", replay_hrefs=hrefs)
+        if len(page.encode("utf-8", "replace")) <= PAGE_BYTES:
+            break
+    return page, pages
 
 
 def write_report(result: dict, traces: dict[str, dict] | None, path: str | Path, *,

@@ -1,5 +1,5 @@
 """The report's templates (and the replay page it embeds) precompiled: simiam.viewer.precompiled says how
-and when stored code is used. This module lists them, loads the report's through PrecompiledLoader and
+and when stored code is used. The report loads them through grader.report.loader; this module
 regenerates them all:
 
     python -m grader.report.precompiled          # regenerate grader/report/compiled, simiam/viewer/compiled
@@ -10,37 +10,17 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import MutableMapping
 from pathlib import Path
-from typing import Any
 
-import jinja2
-
+from grader.report.html import _env
+from grader.report.loader import COMPILED, TEMPLATES, PrecompiledLoader, module_name
 from simiam.viewer import precompiled
 
-COMPILED = Path(__file__).with_name("compiled")
-TEMPLATES = ("report.html.j2", "report.css.j2")
-
-
-def module_name(template: str) -> str:
-    """The stored module of a report template: report.html.j2 -> grader.report.compiled.report_html_j2."""
-    return "grader.report.compiled." + template.replace(".", "_").replace("-", "_")
-
-
-class PrecompiledLoader(jinja2.PackageLoader):
-    """The report's PackageLoader, taking a template's stored code when its stamp matches."""
-
-    def load(self, environment: jinja2.Environment, name: str,
-             globals: MutableMapping[str, Any] | None = None) -> jinja2.Template:
-        source, filename, uptodate = self.get_source(environment, name)
-        if name not in TEMPLATES:
-            return super().load(environment, name, globals)
-        return precompiled.template(environment, source, module_name(name), name, filename, globals, uptodate)
+__all__ = ["COMPILED", "TEMPLATES", "PrecompiledLoader", "main", "module_name"]
 
 
 def main(argv: list[str] | None = None) -> int:
     """`python -m grader.report.precompiled [--check]`."""
-    from grader.report.html import _env
     from simiam.viewer import replay
 
     parser = argparse.ArgumentParser(prog="python -m grader.report.precompiled",

@@ -7,8 +7,10 @@ from numbers and `html.escape`d labels. The batch summary page can reuse `histog
 
 from __future__ import annotations
 
+import contextlib
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from html import escape
 from typing import TypeGuard
@@ -27,6 +29,32 @@ def _n(v: float) -> str:
         return s
     s = s.rstrip("0").rstrip(".")
     return "0" if s in ("-0", "") else s
+
+
+def _n1(v: float) -> str:
+    """A coordinate with one decimal (compact plots), without '-0'."""
+    s = f"{v:.1f}"
+    if s.endswith(".0"):
+        s = s[:-2]
+    return "0" if s == "-0" else s
+
+
+# Compact plots (the batch's student pages, which must stay small): at most COMPACT_POINTS points a line
+# (or fewer, as asked), one decimal a coordinate, straight stretches drawn by their ends. Off by default: a
+# report written by `grade weekN` draws every plot as before.
+COMPACT_POINTS = 250
+_COMPACT: ContextVar[int] = ContextVar("compact_plots", default=0)
+
+
+@contextlib.contextmanager
+def compact_plots(points: int = COMPACT_POINTS) -> Iterator[None]:
+    """Draw the plots made inside this block compact, with at most `points` points a line: a fraction of
+    the bytes, the same picture at screen resolution."""
+    token = _COMPACT.set(max(2, int(points)))
+    try:
+        yield
+    finally:
+        _COMPACT.reset(token)
 
 
 # No quantity of a run of this robot comes near a million (metres, seconds, rad/s, counts); a student's
@@ -228,21 +256,61 @@ def _legend_lines(labels: Sequence[str], left: float, right: float) -> list[tupl
 
 
 def _paths(s: Series, px, py) -> list[str]:
-    paths: list[str] = []
-    cur: list[str] = []
+    compact = _COMPACT.get()
+    segments: list[list[tuple[float, float]]] = []
+    cur: list[tuple[float, float]] = []
     prev = None
-    for x, y in _downsample(s.xs, s.ys):
+    for x, y in _downsample(s.xs, s.ys, compact or 600):
         drawn = -OFF_CHART <= x <= OFF_CHART if type(x) is float else _plottable(x)
         if y is None or not drawn or (s.wrap and prev is not None and abs(y - prev) > math.pi):
             if len(cur) > 1:
-                paths.append("M" + " L".join(cur))
+                segments.append(cur)
             cur = []
         if y is not None and drawn:
-            cur.append(f"{_n(px(x))} {_n(py(y))}")
+            cur.append((px(x), py(y)))
         prev = y
     if len(cur) > 1:
-        paths.append("M" + " L".join(cur))
-    return paths
+        segments.append(cur)
+    return ["M" + " L".join(_coordinates(seg, compact, " ")) for seg in segments]
+
+
+def _coordinates(points: list[tuple[float, float]], compact: int, sep: str) -> list[str]:
+    """Pixel points as SVG text: two decimals each; in compact plots (compact_plots) one decimal, with
+    the points that lie on the line through their neighbours left out (a straight or flat stretch)."""
+    if not compact:
+        return [f"{_n(x)}{sep}{_n(y)}" for x, y in points]
+    return [f"{_n1(x)}{sep}{_n1(y)}" for x, y in _simplified(points)]
+
+
+def _simplified(points: list[tuple[float, float]], tolerance: float = 0.5) -> list[tuple[float, float]]:
+    """`points` with only those kept that the line needs to pass within `tolerance` px of every point
+    (Douglas-Peucker): what is left draws the same line at screen resolution. Plain Python: on a line's
+    few hundred points it is faster than numpy's per-call overhead."""
+    n = len(points)
+    if n < 3:
+        return points
+    keep = [False] * n
+    keep[0] = keep[-1] = True
+    spans = [(0, n - 1)]
+    while spans:
+        i, j = spans.pop()
+        if j - i < 2:
+            continue
+        ax, ay = points[i]
+        bx, by = points[j]
+        dx, dy = bx - ax, by - ay
+        length = math.hypot(dx, dy)
+        far, at = -1.0, i
+        for k in range(i + 1, j):
+            x, y = points[k]
+            # from the segment's line; where it ends where it began (a loop), from that point
+            gap = abs((x - ax) * dy - (y - ay) * dx) if length else math.hypot(x - ax, y - ay)
+            if gap > far:
+                far, at = gap, k
+        if (far / length if length else far) > tolerance:
+            keep[at] = True
+            spans += [(i, at), (at, j)]
+    return [p for p, kept in zip(points, keep, strict=True) if kept]
 
 
 def _band(xs, los, his, color, px, py) -> list[str]:
@@ -347,8 +415,10 @@ def trajectory_svg(trace: dict, size: int = 360) -> Markup:
 
 
 def _polyline(xs: Sequence, ys: Sequence, sx, sy) -> str:
-    pts = [(x, y) for x, y in _downsample(xs, ys, 800) if y is not None and _plottable(x)]
-    return " ".join(f"{_n(sx(x))},{_n(sy(y))}" for x, y in pts)
+    compact = _COMPACT.get()
+    pts = [(sx(x), sy(y)) for x, y in _downsample(xs, ys, compact or 800)
+           if y is not None and _plottable(x)]
+    return " ".join(_coordinates(pts, compact, ","))
 
 
 def heading_svg(trace: dict, goal: Sequence[float] | None = None, settle_time: float | None = None,

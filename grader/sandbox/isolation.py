@@ -30,6 +30,7 @@ from grader.sandbox import reach
 from grader.sandbox.capabilities import is_root
 from grader.sandbox.exposed import WORKER, build_library, installed_copies
 from grader.sandbox.library import shared_library
+from grader.sandbox.workdir import PRIVATE
 from simiam import numerics
 from simiam.course.folders import CHECKOUT
 
@@ -289,6 +290,9 @@ def plan_worker(mode: str, submission: Path, config: dict, *, tmp_bytes: int, li
     preload = uid is not None and _private_env()
     config = dict(config, paths=[str(library), *python_paths(), *extra_paths])
     config.update(submission=str(submission), uid=uid, gid=uid, preload_stdlib=preload, parent=os.getpid())
+    private = submission.parent / PRIVATE      # the worker's own HOME and TMPDIR (grader.sandbox.workdir)
+    if uid is not None and private.is_dir():
+        config["private"] = str(private)
     argv = [*python, str(library / WORKER), json.dumps(config)]
     return WorkerPlan(SUBPROCESS, argv, env, uid, describe(SUBPROCESS), str(submission), config)
 
@@ -332,8 +336,8 @@ def _describe_subprocess(official: bool = False) -> str:
                     leftovers=cannot)
     env_note = " (the Python environment is private to root here, so only modules preloaded before the " \
                "drop can be imported)" if _private_env() else ""
-    swept = ("What its uid leaves in /tmp, /var/tmp, /dev/shm and /dev/mqueue, and its System V IPC "
-             "objects, are removed when its grading ends or is killed; files in any other place that uid "
-             "can write are not.")
+    swept = ("It has a private HOME and TMPDIR of its own; what its uid leaves in any folder of this machine "
+             "that uid can write (found by walking the writable mounts), and its System V IPC objects, are "
+             "removed when its grading ends or is killed.")
     return note(net=net, uid=f" under its own unprivileged uid{env_note}", reads=_what_it_reads(own_uid=True),
                 leftovers=swept)

@@ -32,7 +32,7 @@ from grader.inside.answer_bounds import MAX_ANSWER_BYTES, OutOfBounds, check_mes
 from grader.inside.protocol import MAX_MESSAGE, LineReader, ProtocolError, decode, encode_request
 from grader.sandbox.errors import StudentTimeout, WorkerDied
 from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
-from grader.sandbox.leftovers import remove_ipc_of
+from grader.sandbox.leftovers import remove_files_of, remove_ipc_of
 from grader.sandbox.output import CappedOutput
 
 DUMP_WAIT_SECONDS = 0.25   # how long a timed-out worker gets to write its stack dump before the kill
@@ -385,31 +385,6 @@ def kill_uid(uid: int, rounds: int = 20) -> None:
         subprocess.run(helper, user=uid, group=uid, extra_groups=[], stdin=subprocess.DEVNULL,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False, close_fds=True)
         time.sleep(0.002)
-
-
-_SHARED_DIRS = ("/tmp", "/var/tmp", "/dev/shm", "/dev/mqueue")
-
-
-def remove_files_of(uid: int) -> list[str]:
-    """Delete what `uid` left in the machine's shared writable folders (plain subprocess mode)."""
-    removed = []
-    for root in _SHARED_DIRS:
-        try:
-            entries = list(os.scandir(root))
-        except OSError:
-            continue
-        for entry in entries:
-            try:
-                if entry.stat(follow_symlinks=False).st_uid != uid:
-                    continue
-                if entry.is_dir(follow_symlinks=False):
-                    shutil.rmtree(entry.path, ignore_errors=True)
-                else:
-                    os.unlink(entry.path)
-                removed.append(entry.path)
-            except OSError:
-                pass
-    return removed
 
 
 def _uid_alive(uid: int) -> bool:

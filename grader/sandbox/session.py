@@ -417,15 +417,21 @@ class RemoteBrain:
     """
 
     def __init__(self, session: StudentSession, settings: dict | None = None,
-                 step_timeout: float | None = None, cpu: int | None = None) -> None:
+                 step_timeout: float | None = None, cpu: int | None = None,
+                 start: tuple[float, float, float] | None = None) -> None:
         self.session = session
         self.settings = settings
+        self.start = start  # where the supervisor's estimate starts (None: the week's start, (0, 0, 0))
         self.step_timeout = step_timeout
         self.cpu = cpu  # the core the grading thread keeps to for this run (grader.sandbox.same_core)
         self._started = False
 
     def step(self, readings: Mapping[str, Any]) -> Any:
         if not self._started:
-            self.session.call("brain_start", settings=self.settings, cpu=self.cpu)
+            if self.start is None:
+                self.session.call("brain_start", settings=self.settings, cpu=self.cpu)
+            else:
+                self.session.call("brain_start", settings=self.settings, cpu=self.cpu,
+                                  start=[float(c) for c in self.start])
             self._started = True
         return self.session.call("brain_step", timeout=self.step_timeout, readings=readings)

@@ -29,6 +29,7 @@ MAX_FILES = 64
 # Where the copies go when TMPDIR is out of the worker's reach: the machine's shared temporary folders, which
 # every uid may enter; the copy inside stays readable only by the worker's group.
 SHARED_TEMP = ("/tmp", "/var/tmp", "/dev/shm")
+PRIVATE = "private"   # beside the copy: a plain-subprocess worker's own writable folder (its uid's, 0700)
 
 
 def temp_folder(other_uid: bool) -> Path:
@@ -81,6 +82,10 @@ class WorkCopy:
         if gid is not None:
             # who to clean up after if this grading process is killed (grader.sandbox.leftovers)
             (self._root / UID_MARK).write_text(str(gid))
+            if in_place:   # the worker's own HOME and TMPDIR, removed with the copy (leftovers)
+                private = self._root / PRIVATE
+                private.mkdir(mode=0o700)
+                os.chown(private, gid, gid)
             for path in (self.path, *self.path.iterdir()):
                 os.chown(path, 0, gid)
                 path.chmod(0o750 if path.is_dir() else 0o640)

@@ -23,10 +23,9 @@ from pathlib import Path
 
 from simiam.course.blocks import Block, BlockError, def_line, find_blocks, fingerprint, replace_bodies
 from simiam.course.folders import WeekFolderNotFound, default_week_folder, week_folder
-from simiam.course.placeholders import placeholder_for
 from simiam.course.shipped_blocks import SHIPPED
 from simiam.course.splice import check_body, read_submission_file
-from simiam.course.weeks import get_week, previous_week, week_numbers
+from simiam.course.weeks import get_week, placeholder_for, previous_week, week_numbers
 
 EXIT_OK, EXIT_REFUSED, EXIT_USAGE = 0, 1, 2
 

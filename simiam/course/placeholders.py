@@ -2,7 +2,7 @@
 
 Each week declares the blocks new that week (`Week.blocks`, in simiam/course/weeks/weekN.py); each block of
 `solutions/weekN` is looked up among all weeks' blocks by (file, enclosing function, position in that
-function) with `placeholder_for`.
+function) with `simiam.course.weeks.placeholder_for` (the weeks import this module, not the other way).
 In the week it is introduced its body is replaced by `hint` (comment lines) and `code` (a placeholder that
 runs: the robot stays still or drives straight); in later weeks the solution's body ships filled in.
 
@@ -41,21 +41,3 @@ class Placeholder:
         lines += self.code.strip().splitlines()
         return "".join(f"{indent}{ln}\n" if ln.strip() else "\n" for ln in lines)
 
-
-def placeholder_for(file: str, scope: str, occurrence: int = 1,
-                    week: int | None = None) -> Placeholder | None:
-    """The declared block of (file, scope, occurrence), or None.
-
-    A later week may declare a new block where an earlier week had one (week 7's automaton fills the
-    place of week 5's switching in `QBSupervisor.execute`): in `week`, the block of the latest week up to
-    it is the one meant. Without a week: the first week's."""
-    from simiam.course.weeks import all_blocks
-
-    found = None
-    for p in all_blocks():  # in week order
-        if p.key == (file, scope, occurrence):
-            if week is None:
-                return p
-            if p.week <= week:
-                found = p
-    return found

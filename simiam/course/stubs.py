@@ -22,9 +22,8 @@ from pathlib import Path
 
 from simiam import safe_write
 from simiam.course.blocks import BlockError, find_blocks, fingerprint, replace_bodies
-from simiam.course.placeholders import placeholder_for
 from simiam.course.skeleton_stamp import SKELETONS, STAMP, stamp_text
-from simiam.course.weeks import get_week, week_numbers
+from simiam.course.weeks import get_week, placeholder_for, week_numbers
 
 ROOT = Path(__file__).resolve().parents[2]
 MANIFEST = Path(__file__).with_name("shipped_blocks.py")

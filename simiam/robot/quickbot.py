@@ -94,10 +94,3 @@ def limit_speeds(vel_r: float, vel_l: float, max_vel: float, min_vel: float) -> 
     if abs(vel_l) < min_vel:
         vel_l = 0.0
     return vel_r, vel_l
-
-
-def spec_for_week(week: int) -> RobotSpec:
-    """The QuickBot of course week `week`, as the week declares it (simiam/course/weeks/weekN.py)."""
-    from simiam.course.weeks import get_week
-
-    return get_week(week).spec

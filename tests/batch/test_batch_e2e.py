@@ -70,7 +70,9 @@ def test_week3_class_with_the_real_grader(tmp_path: Path) -> None:
     for _, anchor in links:
         assert report_html.count(f'id="{anchor}"') == 1
         run = report_html.split(f'id="{anchor}"', 1)[1].split('<div class="run"', 1)[0]
-        assert "<iframe" in run.split("</article>", 1)[0]
+        replay = re.search(r'class="replay-link" href="([^"]+)"', run.split("</article>", 1)[0])
+        assert replay and replay[1].startswith("replays/sol/"), run[:300]  # its own page (batch/pages.py)
+        assert 'src="../../assets/replay.js"' in (tmp_path / "two" / replay[1]).read_text()
     again = run_batch(BatchOptions(**base, out=tmp_path / "two", jobs=2))
     assert again["this_run"] == {"graded_now": 0, "skipped": 5}
     one_report = run_batch(BatchOptions(**base, out=tmp_path / "one", jobs=1))

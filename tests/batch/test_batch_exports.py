@@ -9,6 +9,7 @@ import json
 
 import batch_fake_grader
 
+from grader.batch import summary
 from grader.batch.exports import gradebook_csv, gradescope_result, safe_cell
 from grader.batch.progress import Progress, format_duration
 from grader.batch.summary import check_stats, graded_scores, replay_links, shortened, summary_html
@@ -29,7 +30,7 @@ def klass() -> dict[str, dict]:
 def test_gradebook_has_one_column_per_check_and_defuses_formulas(wrong) -> None:
     rows = list(csv.DictReader(io.StringIO(gradebook_csv(klass()))))
     assert list(rows[0]) == ["student", "week3.fake.a", "week3.fake.b", "week3.fake.c", "total", "max",
-                             "status", "message", "late_penalty", "score_before_penalty"]
+                             "status", "message", "late_penalty", "score_before_penalty", "grader"]
     by_id = {r["student"]: r for r in rows}
     assert by_id["bob"]["week3.fake.a"] == "4.0" and by_id["bob"]["week3.fake.b"] == "0.0"
     assert by_id["dan"]["max"] == "10.0" and by_id["dan"]["week3.fake.a"] == ""
@@ -112,7 +113,11 @@ def test_summary_cuts_a_long_message_at_a_word_and_says_so() -> None:
     assert shortened("short enough", 300) == "short enough"
     results = {"zed": {"week": 3, "status": "crashed", "score": 0.0, "checks": [], "message": message}}
     page = summary_html(results, {"zed": "zed"}, {"week": 3, "seed": 1, "grader": "g"})
-    assert f"{cut}</td>" in page
+    # the cell shows the message's start, cut at a word; the whole text is one click away (details)
+    start = shortened(message.strip(), summary.MESSAGE_SHOWN)
+    assert start.endswith("…") and f"<summary>{start}</summary>{message.strip()}</details></td>" in page
+    short = {"zed": {**results["zed"], "message": "your supervisor raised an error"}}
+    assert "<details" not in summary_html(short, {"zed": "zed"}, {"week": 3})
 
 
 class Clock:

@@ -22,6 +22,7 @@ from grader.batch.names import SubmissionRefused, student_stem
 from grader.batch.runner import BatchError, BatchOptions, run_batch
 from grader.batch.submissions import pack, unpack
 from grader.sandbox import leftovers
+from grader.sandbox.runner import kill_uid
 
 FAKE = "batch_fake_grader:fake_grade"
 
@@ -166,7 +167,7 @@ def test_a_killed_grading_process_leaves_no_temp_folder(tmp_path: Path, monkeypa
     assert folder.exists() == keep                 # the wrong pool leaves the student's code on disk
     if keep:       # the real sweep, for every slot of this run (pool's is the wrong one here)
         for scratch in Path(tempfile.gettempdir()).glob(f"{pool.SCRATCH_PREFIX}{os.getpid()}-*"):
-            leftovers.sweep_scratch(scratch)
+            leftovers.sweep_scratch(scratch, kill_uid)
         assert not folder.parent.exists()
 
 

@@ -1,6 +1,6 @@
 """A class of hostile students graded as a batch: nothing they control (folder names, printed output,
 controller state names, exception text) runs as script in any page the grader writes (each student's
-report with its embedded replays, the fallback page, summary.html), Gradescope shows it as plain text,
+report, its replay pages, the fallback page, summary.html), Gradescope shows it as plain text,
 and none of it reaches the instructor's terminal raw."""
 
 from __future__ import annotations
@@ -53,7 +53,8 @@ def hostile_class(tmp_path_factory) -> tuple[Path, str, int]:
 
 
 def pages(out: Path) -> list[Path]:
-    return sorted(out.glob("*.html"))
+    """Every page of the batch: the students' reports, summary.html and each run's replay page."""
+    return sorted(out.glob("*.html")) + sorted(out.glob("replays/*/*.html"))
 
 
 def raw_controls(text: str) -> list[str]:
@@ -80,8 +81,11 @@ def test_gradescope_shows_student_text_as_plain_text(hostile_class) -> None:
 
 
 def open_everything(page) -> None:
-    """Open every <details> (the collapsed checks, the lazy replays) and wait for each replay to start."""
+    """Open every <details> (the collapsed checks, the lazy replays) and wait for each replay to start
+    (a replay page of its own included)."""
     page.evaluate("() => document.querySelectorAll('details').forEach(d => d.open = true)")
+    if page.evaluate("() => !!document.getElementById('simiam-data')"):
+        page.locator("body[data-ready='1']").wait_for(state="attached", timeout=20_000)
     for k in range(page.locator("iframe").count()):
         page.locator("iframe").nth(k).scroll_into_view_if_needed()  # they load lazily, when in view
         page.frame_locator("iframe").nth(k).locator("body[data-ready='1']").wait_for(state="attached",
@@ -99,8 +103,8 @@ def injected(page) -> list[str]:
             handlers: [...document.querySelectorAll('*')].flatMap(e => [...e.attributes])
                 .filter(a => a.name.startsWith('on')).map(a => a.name + '=' + a.value),
             scripts: [...document.scripts].map(s => s.type || 'js')})""")
-        replay = frame.evaluate("() => !!document.getElementById('simiam-data')")
-        expected_scripts = ["application/json", "js"] if replay else []
+        replay = frame.evaluate("() => document.getElementById('simiam-data')?.type")
+        expected_scripts = [replay, "js"] if replay else []   # the data (JSON or deflated), the script
         if state["pwned"] is not None or state["alerts"] or state["imgs"] or state["handlers"] or \
                 state["scripts"] != expected_scripts:
             found.append(f"{frame.url[:60]}: {state}")
@@ -128,8 +132,9 @@ def test_no_page_runs_student_text_even_without_csp(hostile_class, escaping_only
         page.goto(path.resolve().as_uri())
         page.wait_for_load_state("load")
         open_everything(page)
-        for frame in page.frames[1:]:  # the replays draw the state name into their status line
-            frame.evaluate("() => window.simiam.seek(1)")
+        for frame in page.frames:  # the replays draw the state name into their status line
+            if frame.evaluate("() => !!document.getElementById('simiam-data')"):
+                frame.evaluate("() => window.simiam.seek(1)")
         assert injected(page) == [], path.name
         text = page.inner_text("body") + "".join(f.evaluate("() => document.body.innerText")
                                                  for f in page.frames[1:])
@@ -138,7 +143,8 @@ def test_no_page_runs_student_text_even_without_csp(hostile_class, escaping_only
         assert raw_controls(text.replace("\t", " ")) == [], path.name
         visible |= {s for s in ("\\u202e", "\\x1b[2J") if s in text}
         page.close()
-    assert len(pages(out)) == 4  # three students and summary.html
+    # three students and summary.html, and the replay pages of the two students graded
+    assert len(list(out.glob("*.html"))) == 4 and len(pages(out)) > 4
     # every hostile text was shown to its reader, as text: prints, state name, exception, both ids
     assert seen == set(SENTINELS)
     assert visible == {"\\u202e", "\\x1b[2J"}

@@ -60,6 +60,16 @@ def test_grade_bench_prints_machine_baseline_and_ratios():
     assert len(_ratios(out, "baseline CPU")) == 2  # the fresh process and the warm grade_submission
 
 
+def test_pages_bench_prints_machine_sizes_and_the_same_run_baseline():
+    out = _script("benchmarks/pages_bench.py", "--week", "1", "--n", "2", "--jobs", "1")
+    assert MACHINE.search(out) and LOAD_AFTER.search(out)
+    rows = dict((name, (float(size), float(x))) for name, size, x in re.findall(
+        r"^(self-contained \(baseline\)|shared assets) +([0-9.]+) +([0-9.]+) ", out, re.M))
+    assert set(rows) == {"self-contained (baseline)", "shared assets"}, out
+    assert rows["self-contained (baseline)"][1] == 1.0 and 0 < rows["shared assets"][1] < 1.0
+    assert re.search(r"^shared assets .* [0-9.]+ +[0-9.]+ +[0-9.]+$", out, re.M)  # pages/s, x base, CPU
+
+
 def test_batch_bench_prints_machine_baseline_and_ratios():
     out = _script("benchmarks/batch_bench.py", "--weeks", "1", "--jobs", "1", "--n", "1")
     assert MACHINE.search(out) and LOAD_AFTER.search(out)
@@ -150,3 +160,14 @@ def test_step_identity_finds_one_changed_bit(tmp_path):
     done = subprocess.run([sys.executable, "benchmarks/step_identity.py", "compare", str(record), "--only",
                            "solution/week2/start"], cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert done.returncode == 1 and f"DIFFERS solution/week2/start[0].steps.t[{k}]" in done.stdout
+
+
+def test_similarity_bench_prints_machine_baseline_and_ratio():
+    out = _script("benchmarks/similarity_bench.py", "--n", "8", "--hostile-mb", "0.2")
+    assert MACHINE.search(out) and LOAD_AFTER.search(out)
+    assert re.search(r"^baseline: stdlib tokenize over the class's blocks \(\d+ tokens\): [0-9.]+ s CPU$",
+                     out, re.M)
+    row = re.search(r"^class of 8 .*\((\d+) pairs share a fingerprint, (\d+) at 60 % or more\), .* = "
+                    r"([0-9.]+|nan)x baseline", out, re.M)
+    assert row and int(row.group(1)) >= int(row.group(2)) > 0, out   # the copies of a variant pair up
+    assert re.search(r"^hostile student, a 0.2 MB block: [0-9.]+ s CPU", out, re.M), out

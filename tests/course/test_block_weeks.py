@@ -6,9 +6,10 @@ from __future__ import annotations
 
 import pytest
 
-from simiam.course import placeholders
-from simiam.course.placeholders import Placeholder, placeholder_for
+from simiam.course import weeks
+from simiam.course.placeholders import Placeholder
 from simiam.course.stubs import stub_text
+from simiam.course.weeks import placeholder_for
 
 KEY = ("qb_supervisor.py", "QBSupervisor.execute")
 EARLY = Placeholder(*KEY, hint="week 5's switching", code="pass", week=5)
@@ -19,7 +20,7 @@ SOLUTION = "def execute():\n    # START CODE BLOCK\n    state = 1\n    # END COD
 @pytest.fixture
 def two_weeks(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr("simiam.course.weeks.all_blocks", lambda: (EARLY, LATE))
-    assert placeholders.placeholder_for is placeholder_for
+    assert weeks.placeholder_for is placeholder_for
 
 
 @pytest.mark.usefixtures("two_weeks")

@@ -20,7 +20,7 @@ MINE = (
 
 def fill(folder: Path, week: int, extra: str = MINE) -> None:
     """Fill this week's new blocks the way a student would: the solution's code plus a line of their own."""
-    from simiam.course.placeholders import placeholder_for
+    from simiam.course.weeks import placeholder_for
 
     for path in sorted(folder.glob("*.py")):
         sol = (ROOT / "solutions" / f"week{week}" / path.name).read_text()

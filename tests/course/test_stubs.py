@@ -9,10 +9,10 @@ from pathlib import Path
 import pytest
 
 from simiam.course.blocks import BlockError, dedent_body, find_blocks, fingerprint
-from simiam.course.placeholders import Placeholder, placeholder_for
+from simiam.course.placeholders import Placeholder
 from simiam.course.splice import splice
 from simiam.course.stubs import ROOT, differences, generate, main, stub_text, write
-from simiam.course.weeks import all_blocks, week_numbers
+from simiam.course.weeks import all_blocks, placeholder_for, week_numbers
 
 WEEKS = week_numbers()
 

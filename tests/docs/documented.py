@@ -49,15 +49,16 @@ SKIPPED = (
          "installs into a new environment: tests/packaging/test_wheel.py installs the wheel in a fresh venv "
          "and runs grade, simiam run and migrate from it; here the suite's own install is used"),
     Skip(r"--executor dask|^dask ", "needs a Dask cluster (tests/batch/test_batch_dask.py runs a local one)"),
-    Skip(r"--batch (\"[^\"]+\.zip\"|\S+\.zip\b)",
+    Skip(r"(--batch|^grade similarity week\d) (\"[^\"]+\.zip\"|\S+\.zip\b)",
          "a course platform's download, which the checkout does not hold: tests/batch/test_batch_intake.py "
          "builds Canvas, Moodle and Gradescope downloads in their real layouts and reads these options "
-         "from the command line (test_the_command_line_reads_the_intake_options)"),
+         "from the command line (test_the_command_line_reads_the_intake_options); "
+         "tests/batch/test_batch_similarity.py runs grade similarity and --similarity on a Canvas one"),
     Skip(r"^grade selfcheck", "every week's solutions, stubs and wrong versions: minutes of CPU "
          "(tests/platforms/test_selfcheck.py runs it week by week)"),
     Skip(r"AUTOGRADER_ROOT=|GRADE_ROOT=|COURSERA_SHARED=",
-         "the platform image's own scripts, in /tmp/ag, /tmp/grade or /tmp/shared and (Gradescope, "
-         "PrairieLearn) as root: tests/platforms (test_gradescope_bundle.py, test_prairielearn.py, "
+         "the platform image's own scripts, in a fresh mktemp folder and (Gradescope, PrairieLearn) as "
+         "root: tests/platforms (test_gradescope_bundle.py, test_prairielearn.py, "
          "test_coursera.py) run them in a temporary root", scope="block"),
     Skip(r"benchmarks/|grader\.sandbox\.bench|^simiam bench|importtime|pythonX\.Y|batch-main|<branch>|"
          r"import numpy",

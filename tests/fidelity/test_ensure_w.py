@@ -19,7 +19,8 @@ import pytest
 
 from simiam.control import Pose2D, RobotView
 from simiam.course.loader import load_submission
-from simiam.robot.quickbot import limit_speeds, spec_for_week
+from simiam.course.weeks import spec_for_week
+from simiam.robot.quickbot import limit_speeds
 
 ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = ROOT / "tests/data/golden/ensure_w.csv"

@@ -6,8 +6,9 @@ from __future__ import annotations
 import pytest
 from physics_golden import check_drive, grouped, wrong
 
+from simiam.course.weeks import spec_for_week
 from simiam.robot.dynamics import move, move_arc
-from simiam.robot.quickbot import limit_speeds, spec_for_week
+from simiam.robot.quickbot import limit_speeds
 from simiam.robot.wheel_encoder import WheelEncoder
 from simiam.simulator import ConstantBrain, Simulator
 from simiam.world import World

@@ -13,7 +13,7 @@ import pytest
 
 from simiam.control import RobotView
 from simiam.course.loader import load_submission
-from simiam.robot.quickbot import spec_for_week
+from simiam.course.weeks import spec_for_week
 
 ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = ROOT / "tests/data/golden"

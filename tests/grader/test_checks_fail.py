@@ -44,9 +44,17 @@ MESSAGES = {
     "week3_gains_in_execute": {"week3.pid.memory": "execute overwrote Kp/Ki/Kd"},
     "week3_single_wrap": {"week3.go_to_goal.error_wrap": "wrapped into [-pi, pi]"},
     "week3_theta_g_from_origin": {"week3.go_to_goal.theta_g": "from the robot's position"},
+    "week3_theta_g_atan2_swapped": {"week3.go_to_goal.theta_g": "3.1416 rad off, expected 2.3562"},
     "week2_ir_no_divider": {"week2.ir.table": "wildly off (-8.886e+13 m)",
                             "week2.ir.simulator": "wildly off (-8.886e+13 m)"},
     "week2_half_turn": {"week2.go_to_angle.reaches_theta_d": "ended 0.032 rad away"},
+    "week2_ir_degree7_rounded": {"week2.ir.table": "so your volts are right"},
+    "week2_ir_wrong_divider": {"week2.ir.table": "divide by 500 to get volts"},
+    "week2_uni_to_diff_over_3R": {"week2.uni_to_diff.round_trip": "v and w both came out 0.6667 times"},
+    "week2_uni_to_diff_times_R": {"week2.uni_to_diff.round_trip": "v and w both came out 0.0011 times"},
+    "week2_full_L": {"week2.uni_to_diff.round_trip": "w came out 2 times the asked: check L/2 vs L"},
+    "week2_swapped_wheels": {"week2.uni_to_diff.round_trip": "v is right and w reversed: check which wheel"},
+    "week2_spin_unequal": {"week2.uni_to_diff.spin": "opposite but not equal (one 0.5 times"},
     "week4_theta_ao_swapped": {"week4.avoid.heading": "atan2(u_ao[1], u_ao[0])"},
     "week4_ao_error_not_wrapped": {"week4.avoid.heading": "wrapped into [-pi, pi]"},
     "week4_gains_from_readings": {"week4.avoid.symmetric_gains": "sensor_gains must be fixed numbers"},
@@ -71,8 +79,17 @@ MESSAGES = {
     "week7_sigma_cramer_sign": {"week7.sliding.sigma": "sigma_2 has the wrong sign"},
     "week7_sigma_transposed": {"week7.sliding.sigma": "as the ROWS; solve"},
     "week7_progress_strict": {"week7.progress.made": "a step with no encoder tick"},
-    "week7_progress_point_never_set": {"week7.navigate.release_goal": "never calls self.set_progress_point"},
+    "week7_progress_point_never_set": {"week7.navigate.release_goal": "calls self.set_progress_point() when"},
     "week7_stub_thresholds": {"week7.navigate.release_goal": "tune d_at_obs and d_unsafe"},
+}
+
+# what it must NOT say: a hint pointing at a part the numbers show is right (issue 31)
+NOT_SAID = {
+    "week2_ir_degree7_rounded": {"week2.ir.table": "divide by 500"},
+    "week2_uni_to_diff_over_3R": {"week2.uni_to_diff.round_trip": "L/2 vs L"},
+    "week2_uni_to_diff_times_R": {"week2.uni_to_diff.round_trip": "L/2 vs L"},
+    "week2_spin_unequal": {"week2.uni_to_diff.spin": "needs opposite, non-zero"},
+    "week2_full_L": {"week2.uni_to_diff.round_trip": "which wheel is which"},
 }
 
 
@@ -88,6 +105,8 @@ def test_wrong_version_loses_exactly_its_checks(name: str, tmp_path: Path) -> No
     checks = {c["id"]: c for c in result["checks"]}
     for check_id, words in MESSAGES.get(name, {}).items():
         assert words in checks[check_id]["message"], checks[check_id]["message"]
+    for check_id, words in NOT_SAID.get(name, {}).items():
+        assert words not in checks[check_id]["message"], checks[check_id]["message"]
     for c in visible:  # the hidden checks' words are tested with the hidden sets (test_hidden_*)
         if c["status"] == "passed":
             continue

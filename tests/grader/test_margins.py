@@ -76,3 +76,19 @@ def test_a_margin_that_contradicts_its_verdict_is_caught() -> None:
                           "details": {"margins": [entry]}}]}
     assert _agree(result) == ["x passed with ['turning rate 2.87 rad/s (limit <= 1.2 rad/s): 1.67 rad/s past "
                               "it [run]']"]
+
+
+def test_overshoot_is_shown_as_the_percentage_students_read() -> None:
+    """`grade selfcheck` printed "overshoot 32.12 (limit <= 0.1)" where every message says percent (issue
+    31); the stored figures stay fractions, and a result read back from JSON reads the same."""
+    import json
+
+    from grader.checks.week3 import OVERSHOOT
+    from grader.margins import words
+
+    entry = json.loads(json.dumps(OVERSHOOT.entry(0.3212, "goal (0, -1)")))
+    assert entry["value"] == 0.3212 and entry["limit"] == 0.1
+    said = words(entry)
+    assert said == "overshoot 32.12 % (limit <= 10 %): 22.1 % past it [goal (0, -1)]", said
+    assert "0.1)" not in said
+    assert words(OVERSHOOT.entry(0.0171, "")) == "overshoot 1.71 % (limit <= 10 %): 8.29 % to spare"

@@ -13,7 +13,7 @@ import pytest
 from grader import reference as ref
 from instructor_tools import expected
 from instructor_tools.reference_maths import ensure_w_week3
-from simiam.robot.quickbot import spec_for_week
+from simiam.course.weeks import spec_for_week
 
 
 def _cases(n: int = 2000) -> list[tuple[float, float]]:

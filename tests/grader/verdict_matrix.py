@@ -53,11 +53,14 @@ def grade_here(wanted: list[str], nudge: float, seed: int = SEED) -> dict:
     verdicts: dict[str, dict[str, list]] = {}
     numerics: dict = {}
     began = time.monotonic()
+    built: dict[str, Path] = {}  # a label asked for with two checks is built once
     with tempfile.TemporaryDirectory(prefix="simiam-verdicts-") as tmp:
         for item in wanted:
             label, _, check = item.partition("::")
             week = weeks[label]
-            folder = ROOT / label if "/" in label else build("wrong", label, Path(tmp), week)
+            if label not in built:
+                built[label] = ROOT / label if "/" in label else build("wrong", label, Path(tmp), week)
+            folder = built[label]
             result = grade_submission(week, folder, seed=seed, hidden=True, only=check or None,
                                       start_nudge=(nudge, nudge))
             numerics = result.get("numerics") or numerics

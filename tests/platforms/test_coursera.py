@@ -22,13 +22,15 @@ from conftest import SEED, base_env
 from coursera_spec import coursera_violations
 from mistakes import ROOT, build
 
-from grader.checks.week3 import TRACKING_TURN, seeded_goals, tracking_excluded
+from grader.checks.week3 import TRACKING_TURN, seeded_goals, seeded_start_and_goal, tracking_excluded
 from grader.platforms.coursera import feedback
 from grader.platforms.handout import handout_files, leaks
 
 PART = "simW3"
-# week 3's hidden checks drive to goals drawn from the seed; the way the checks write them
-HIDDEN_GOALS = [f"({x:g}, {y:g})" for x, y in [*seeded_goals(SEED, 3, "hidden"),
+# week 3's hidden checks drive to goals drawn from the seed (the third from a start away from the origin);
+# the way the checks write them
+HIDDEN_GOALS = [f"({x:g}, {y:g})" for x, y in [*seeded_goals(SEED, 2, "hidden"),
+                                                seeded_start_and_goal(SEED, "hidden")[1],
                                                 *seeded_goals(SEED, 1, "tracking", TRACKING_TURN,
                                                               tracking_excluded())]]
 
@@ -197,7 +199,7 @@ def test_a_secret_others_can_read_stops_grading_with_a_grader_error(coursera, au
 
 @pytest.mark.slow
 @pytest.mark.sandbox
-def test_in_a_container_like_courseras_the_image_paths_work_without_root(coursera, autograder, tmp_path):
+def test_in_a_container_like_courseras_without_namespaces_grading_refuses(coursera, autograder, tmp_path):
     # bubblewrap lays out what Coursera's container has: the build folder at /opt/simiam, the venv at
     # /opt/simiam-venv, the submission at /shared/submission, no network, and a grader that is not root
     # (uid 1000, owning the secret as simiam-grader does in the image); /dev/null over bwrap stands for a
@@ -225,14 +227,14 @@ def test_in_a_container_like_courseras_the_image_paths_work_without_root(courser
     done = subprocess.run(argv, capture_output=True, text=True, timeout=600)
     assert done.returncode == 0 and done.stdout == "", done.stdout + done.stderr
     assert coursera_violations(shared) == []
+    # student code would run as the grader's own uid with nothing between them: official grading fails
+    # closed (issue 30 item 4), with what to enable for the staff and no grade for the learner
     result = json.loads((shared / "feedback.json").read_text())
-    assert result["fractionalScore"] == 1.0
-    text = result["feedback"] + (shared / "htmlFeedback.html").read_text()
-    assert "isolation: subprocess: official grading, on a platform that does not offer the full sandbox: " \
-           "your code ran in a plain subprocess" in result["feedback"]
-    # the sandbox's words for a student's own machine would point at an official grading that is this one
-    assert "local check only" not in text and "Official grading runs it in the full sandbox" not in text
-    assert str(SEED) not in text
+    assert result["fractionalScore"] == 0.0 and not (shared / "htmlFeedback.html").exists()
+    assert "not set up to run code safely" in result["feedback"]
+    assert "official grading refused: student code would run under the grader's own uid (1000)" in done.stderr
+    assert "user namespaces" in done.stderr
+    assert str(SEED) not in result["feedback"]
 
 
 @pytest.mark.slow

@@ -14,8 +14,7 @@ from grader.platforms.handout import handout_files
 from grader.platforms.official import SubmissionRefused, grade_upload, read_secret, write_secret
 from grader.platforms.prairielearn import editor_files
 from simiam.course.blocks import find_blocks
-from simiam.course.placeholders import placeholder_for
-from simiam.course.weeks import week_numbers
+from simiam.course.weeks import placeholder_for, week_numbers
 
 
 def _with_new_blocks(week: int, files: dict[str, str]) -> list[str]:

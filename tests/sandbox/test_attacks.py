@@ -155,7 +155,7 @@ def test_monkeypatching_stays_inside_the_worker(open_one):
     assert not numpy.allclose(1.0, 2.0)
     with pytest.raises(validate.BadValue):
         validate.as_float("100")
-    from simiam.robot.quickbot import spec_for_week
+    from simiam.course.weeks import spec_for_week
 
     assert spec_for_week(3) is not None
 
@@ -288,7 +288,7 @@ def test_sleeping_past_the_limit_until_the_budget_is_spent(open_one):
 
 
 def test_robot_limits_changed_in_the_worker_stay_there(open_one):
-    from simiam.robot.quickbot import spec_for_week
+    from simiam.course.weeks import spec_for_week
 
     before = spec_for_week(3).max_vel
     session = open_one("robot_limits")
@@ -317,8 +317,10 @@ def test_the_worker_sees_no_secrets_and_no_repository(open_session, mode, monkey
              str(REPO / "grader" / "hidden"), str(REPO / "grader" / "checks"), str(REPO / "reports")]
     seen = attack(session, paths=paths)
     assert "SIMIAM_GRADER_SECRET" not in seen["environ"] and "s3cret" not in seen["cmdline"]
-    # the numeric environment simiam.numerics pins (kernel, threads, SIMD level) and nothing else
-    assert set(seen["environ"]) <= {"PATH", "HOME", "LANG", *numerics.PINNED_VARIABLES, numerics.OVERRIDE}
+    # the numeric environment simiam.numerics pins (kernel, threads, SIMD level) and nothing else; TMPDIR is
+    # a plain subprocess's private folder (issue 30 item 3)
+    assert set(seen["environ"]) <= {"PATH", "HOME", "LANG", "TMPDIR", *numerics.PINNED_VARIABLES,
+                                     numerics.OVERRIDE}
     if AS_ROOT:
         assert seen["uid"] != 0
     if mode == BWRAP:

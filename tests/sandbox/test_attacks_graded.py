@@ -126,7 +126,7 @@ def test_asking_a_server_for_the_answer_gets_nothing(tmp_path):
 
 
 def test_raised_robot_limits_do_not_reach_the_physics(tmp_path):
-    from simiam.robot.quickbot import spec_for_week
+    from simiam.course.weeks import spec_for_week
 
     traces: dict = {}
     scenario = "week2.go_to_angle.reaches_theta_d"

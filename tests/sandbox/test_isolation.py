@@ -81,4 +81,6 @@ def test_the_subprocess_note_says_what_cannot_be_cleaned(monkeypatch):
     monkeypatch.setattr(isolation.os, "geteuid", lambda: 0)
     monkeypatch.setattr(isolation, "_uid_range", lambda: (200_000, 260_000))
     as_root = isolation.describe("subprocess")
-    assert "System V IPC objects, are removed" in as_root and "any other place" in as_root
+    # issue 30 item 3: every folder its uid could write is swept, not a list of four
+    assert "System V IPC objects, are removed" in as_root and "any folder of this machine" in as_root
+    assert "private HOME and TMPDIR" in as_root

@@ -13,8 +13,7 @@ from grader.sandbox.limits import Limits
 from grader.sandbox.session import RemoteBrain, StudentSession
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
-from simiam.course.weeks import get_week
-from simiam.robot.quickbot import spec_for_week
+from simiam.course.weeks import get_week, spec_for_week
 from simiam.simulator import BrainError, Simulator
 from simiam.world import load_world
 

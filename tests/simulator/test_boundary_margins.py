@@ -9,6 +9,7 @@ import random
 
 import pytest
 
+from simiam.course.weeks import spec_for_week
 from simiam.physics.collision import plate_collides, plate_collides_exact
 from simiam.physics.ir_ranging import cone_range, cone_range_exact
 from simiam.physics.parallel import NearParallel
@@ -16,7 +17,6 @@ from simiam.physics.precheck import span
 from simiam.physics.segments import ObstacleEdges, crossing, tolerance
 from simiam.physics.transform import fast_error, transform_exact, transform_fast
 from simiam.robot.ir_sensor import distance_to_raw, ir_voltage, mounted_cone, settled_raw
-from simiam.robot.quickbot import spec_for_week
 from simiam.world import load_world
 
 SPEC = spec_for_week(4)

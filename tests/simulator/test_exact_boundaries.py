@@ -9,8 +9,8 @@ import random
 
 import original_model as original
 
+from simiam.course.weeks import spec_for_week
 from simiam.physics.transform import transform_fast
-from simiam.robot.quickbot import spec_for_week
 from simiam.simulator import ConstantBrain, Simulator
 from simiam.world import load_world
 from simiam.world.world import World

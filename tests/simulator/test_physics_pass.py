@@ -10,8 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from sim_helpers import wrong
 
+from simiam.course.weeks import spec_for_week
 from simiam.physics.robot_surfaces import RobotSurfaces
-from simiam.robot.quickbot import spec_for_week
 from simiam.world import load_world
 
 SPEC = spec_for_week(4)

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import pytest
 
+from simiam.course.weeks import spec_for_week
 from simiam.fleet import Fleet
-from simiam.robot.quickbot import spec_for_week
 from simiam.simulator import ConstantBrain, Simulator
 from simiam.trace import Ending, EndReason, Trace
 from simiam.world import load_world

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from simiam import signals
-from simiam.robot.quickbot import spec_for_week
+from simiam.course.weeks import spec_for_week
 from simiam.signals import LABEL_CHARS, MAX_COUNT, SIGNALS, WEEKS_1_TO_4, clean_debug, declared, read_signals
 from simiam.simulator import Simulator
 from simiam.trace import Trace

@@ -6,13 +6,14 @@ from __future__ import annotations
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from simiam.course.weeks import spec_for_week
 from simiam.physics.collision import plate_collides, plate_collides_exact
 from simiam.physics.ir_ranging import cone_range, cone_range_exact
 from simiam.physics.precheck import span
 from simiam.physics.segments import ObstacleEdges, tolerance
 from simiam.physics.transform import transform_exact, transform_fast
 from simiam.robot.ir_sensor import distance_to_raw, mounted_cone
-from simiam.robot.quickbot import BASE_PLATE, spec_for_week
+from simiam.robot.quickbot import BASE_PLATE
 from simiam.world import load_world
 
 SPEC = spec_for_week(4)

@@ -9,8 +9,8 @@ import pytest
 from sim_helpers import wrong
 
 from instructor_tools.reference_brains import AvoidObstaclesBrain
+from simiam.course.weeks import spec_for_week
 from simiam.fleet import Fleet
-from simiam.robot.quickbot import spec_for_week
 from simiam.simulator import ConstantBrain, Simulator
 from simiam.world import World, load_world
 

@@ -7,7 +7,8 @@ import math
 import pytest
 from sim_helpers import wrong
 
-from simiam.robot.quickbot import MIN_VEL_30RPM, limit_speeds, spec_for_week
+from simiam.course.weeks import spec_for_week
+from simiam.robot.quickbot import MIN_VEL_30RPM, limit_speeds
 from simiam.robot.wheel_encoder import WheelEncoder
 
 W4 = spec_for_week(4)

@@ -10,7 +10,7 @@ import pytest
 from sim_helpers import DATA, wrong
 
 from instructor_tools.reference_brains import GoToGoalBrain
-from simiam.robot.quickbot import spec_for_week
+from simiam.course.weeks import spec_for_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
 

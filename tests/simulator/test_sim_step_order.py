@@ -8,7 +8,7 @@ import math
 import pytest
 from sim_helpers import wrong
 
-from simiam.robot.quickbot import spec_for_week
+from simiam.course.weeks import spec_for_week
 from simiam.simulator import BrainError, ConstantBrain, Simulator, validate_command
 from simiam.world import load_world
 

@@ -7,7 +7,7 @@ import json
 
 import pytest
 
-from simiam.robot.quickbot import spec_for_week
+from simiam.course.weeks import spec_for_week
 from simiam.simulator import ConstantBrain, Simulator
 from simiam.trace import COLUMNS, Trace
 from simiam.world import load_world

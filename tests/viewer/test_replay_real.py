@@ -13,7 +13,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 def constant_speed_trace(seconds: float = 20.0) -> dict:
     """Week-4 world, both wheels constant (a slow left arc) until it hits something."""
-    from simiam.robot.quickbot import spec_for_week
+    from simiam.course.weeks import spec_for_week
     from simiam.simulator import ConstantBrain, Simulator
     from simiam.world import load_world
 

@@ -1,7 +1,8 @@
 """The weeks of the course: one file per week, `weekN.py` holding `WEEK = Week(...)`, found by name.
 
 `get_week(3)` (or "3", "week3") returns week 3's declaration; `all_weeks()` every week in order;
-`week_numbers()` their numbers. Nothing lists the weeks by hand: a `weekN.py` in this package is a week of
+`week_numbers()` their numbers; `spec_for_week(3)` the QuickBot week 3 drives; `placeholder_for` a block
+declared by some week. Nothing lists the weeks by hand: a `weekN.py` in this package is a week of
 the course (see docs/design.md, "Adding a week"), so adding a week is adding a file.
 """
 
@@ -14,6 +15,7 @@ import re
 
 from simiam.course.placeholders import Placeholder
 from simiam.course.week import Week
+from simiam.robot.quickbot import RobotSpec
 
 _WEEK_MODULE = re.compile(r"week([1-9][0-9]*)")
 # What hidden checks vary, in words, for a week that does not say (or a result of a week not declared here)
@@ -85,10 +87,33 @@ def previous_week(week: int) -> int:
     return numbers[numbers.index(number) - 1]
 
 
+def spec_for_week(week: int | str) -> RobotSpec:
+    """The QuickBot of course week `week`, as the week declares it (simiam/course/weeks/weekN.py): the
+    course asks the robot model for the robot it needs, the robot model knows no weeks."""
+    return get_week(week).spec
+
+
 def all_blocks() -> tuple[Placeholder, ...]:
     """The code blocks of every week (each new in its week), in week order."""
     return tuple(block for week in all_weeks() for block in week.blocks)
 
 
+def placeholder_for(file: str, scope: str, occurrence: int = 1,
+                    week: int | None = None) -> Placeholder | None:
+    """The declared block of (file, scope, occurrence), or None.
+
+    A later week may declare a new block where an earlier week had one (week 7's automaton fills the
+    place of week 5's switching in `QBSupervisor.execute`): in `week`, the block of the latest week up to
+    it is the one meant. Without a week: the first week's."""
+    found = None
+    for p in all_blocks():  # in week order
+        if p.key == (file, scope, occurrence):
+            if week is None:
+                return p
+            if p.week <= week:
+                found = p
+    return found
+
+
 __all__ = ["HIDDEN_VARIANTS_UNSAID", "Week", "all_blocks", "all_weeks", "get_week", "hidden_variants",
-           "previous_week", "refresh", "week_numbers"]
+           "placeholder_for", "previous_week", "refresh", "spec_for_week", "week_numbers"]

@@ -5,7 +5,29 @@
 (function () {
   "use strict";
 
-  var D = JSON.parse(document.getElementById("simiam-data").textContent);
+  // The run's data: JSON as it is, or (a batch's replay pages) deflated and base64-encoded, unpacked by the
+  // browser's own DecompressionStream before the page starts.
+  var DATA = document.getElementById("simiam-data");
+  if (DATA.type === "application/json") {
+    start(JSON.parse(DATA.textContent));
+  } else {
+    unpacked(DATA.textContent).then(function (text) { start(JSON.parse(text)); }, function (err) {
+      var line = document.getElementById("status");
+      if (line) { line.textContent = "This browser could not unpack the replay (" + err + "): it needs " +
+                  "Chrome 80, Firefox 113, Safari 16.4 or later."; }
+    });
+  }
+
+  function unpacked(text) {
+    try {
+      var bytes = Uint8Array.from(atob(text.trim()), function (c) { return c.charCodeAt(0); });
+      return new Response(new Blob([bytes]).stream().pipeThrough(new DecompressionStream("deflate"))).text();
+    } catch (err) {
+      return Promise.reject(err);
+    }
+  }
+
+  function start(D) {
   var S = D.steps;
   var SIGS = D.signals || [], SD = D.signal_data || {};   // the run's declared debug signals, by name
   var N = S.t.length;
@@ -248,13 +270,47 @@
     ctx.moveTo(x - r, y - r); ctx.lineTo(x + r, y + r); ctx.moveTo(x + r, y - r); ctx.lineTo(x - r, y + r); ctx.stroke();
     ctx.beginPath(); ctx.arc(x, y, r + 5, 0, 2 * Math.PI); ctx.lineWidth = 1.5; ctx.stroke();
     ctx.fillStyle = COLORS.crash; ctx.font = "bold 12px system-ui, sans-serif";
-    var label = "collision at t = " + c.t.toFixed(2) + " s", lw = ctx.measureText(label).width;
-    // right of the mark, or left of it when that would run off the canvas (a crash into the east wall)
-    var lx = x + r + 8 + lw > st.W - 4 ? x - r - 8 - lw : x + r + 8;
-    st.crashLabel = [lx, lw];
-    ctx.fillStyle = "rgba(255,255,255,0.85)"; ctx.fillRect(lx - 3, y - 9, lw + 6, 17);  // readable over the trail
-    ctx.fillStyle = COLORS.crash; ctx.fillText(label, lx, y + 4);
+    var label = "collision at t = " + c.t.toFixed(2) + " s", lw = ctx.measureText(label).width, h = 17;
+    // right of the mark, else left, above or below it: the first place on the canvas that covers no wall
+    // (a crash happens at a wall, so the label's first choice often lies over one); else the least bad
+    var places = [[x + r + 8, y - 9], [x - r - 8 - lw, y - 9], [x - lw / 2, y - r - 10 - h], [x - lw / 2, y + r + 10]];
+    var best = null;
+    places.forEach(function (p) {
+      var box = [p[0] - 3, p[1], lw + 6, h];
+      var off = box[0] < 0 || box[1] < 0 || box[0] + box[2] > st.W || box[1] + box[3] > st.H;
+      var cost = (off ? 1000 : 0) + wallsUnder(box);
+      if (best === null || cost < best.cost) { best = { cost: cost, lx: p[0], top: p[1] }; }
+    });
+    st.crashLabel = [best.lx, lw];
+    st.crashBox = [best.lx - 3, best.top, lw + 6, h];
+    ctx.fillStyle = "rgba(255,255,255,0.85)"; ctx.fillRect(best.lx - 3, best.top, lw + 6, h);  // readable over the trail
+    ctx.fillStyle = COLORS.crash; ctx.fillText(label, best.lx, best.top + 13);
     ctx.globalAlpha = 1;
+  }
+  // How many obstacle edges cross the canvas box [x, y, w, h], plus one for an obstacle that holds its middle.
+  function wallsUnder(box) {
+    var n = 0, x0 = box[0], y0 = box[1], x1 = box[0] + box[2], y1 = box[1] + box[3];
+    D.world.obstacles.forEach(function (poly) {
+      var pts = poly.map(function (p) { return [sx(p[0]), sy(p[1])]; }), inside = false;
+      for (var k = 0, j = pts.length - 1; k < pts.length; j = k++) {
+        if (segmentMeetsBox(pts[j], pts[k], x0, y0, x1, y1)) { n++; }
+        var a = pts[j], b = pts[k], my = (y0 + y1) / 2, mx = (x0 + x1) / 2;
+        if ((a[1] > my) !== (b[1] > my) && mx < a[0] + (my - a[1]) * (b[0] - a[0]) / (b[1] - a[1])) { inside = !inside; }
+      }
+      if (inside) { n++; }
+    });
+    return n;
+  }
+  function segmentMeetsBox(a, b, x0, y0, x1, y1) {   // Liang-Barsky clipping: any part of a-b inside the box
+    var t0 = 0, t1 = 1, dx = b[0] - a[0], dy = b[1] - a[1];
+    var ps = [-dx, dx, -dy, dy], qs = [a[0] - x0, x1 - a[0], a[1] - y0, y1 - a[1]];
+    for (var k = 0; k < 4; k++) {
+      if (ps[k] === 0) { if (qs[k] < 0) { return false; } continue; }
+      var u = qs[k] / ps[k];
+      if (ps[k] < 0) { t0 = Math.max(t0, u); } else { t1 = Math.min(t1, u); }
+      if (t0 > t1) { return false; }
+    }
+    return true;
   }
   function drawDebug(i, q, qe) {
     var from = qe || q, L = Math.max(0.25, 60 / st.zoom);
@@ -431,8 +487,9 @@
     var headings = [];
     OVERLAYS.forEach(function (o) {
       if (o.kind === "scalar") {
-        hs.push({ label: o.name, ys: o.data, color: o.color, dash: [5, 3], breakOnWrap: true, width: 1.6 });
-        headings.push(o.name);
+        // the controller's own value (the report's static chart draws θ_g from the true position)
+        hs.push({ label: o.name + " (controller)", ys: o.data, color: o.color, dash: [5, 3], breakOnWrap: true, width: 1.6 });
+        headings.push(o.name + " (controller)");
       }
     });
     hs.push({ label: "θ (true)", ys: S.theta.map(wrap), color: "#9aa3ae", breakOnWrap: true, width: 1 });
@@ -473,28 +530,62 @@
   }
   function stateAt(i) { return runAt(D.states, i); }
   function f3(v) { return v === null || v === undefined ? "–" : v.toFixed(3); }
+  // The status line's parts at step i, each [key, html]; a part that comes and goes (a label such as
+  // fw_direction, an event that holds) keeps its key, so the widest line of the run can be put together.
+  function statusParts(i) {
+    var parts = [["step", "<b>step</b> " + i], ["state", "<b>state</b> " + escapeHtml(visible(stateAt(i)))],
+                 ["true", "<b>true</b> (" + f3(S.x[i]) + ", " + f3(S.y[i]) + ", " + f3(wrap(S.theta[i])) + ")"],
+                 ["estimate", "<b>estimate</b> (" + f3(S.x_est[i]) + ", " + f3(S.y_est[i]) + ", " + f3(wrap(S.theta_est[i])) + ")"],
+                 ["wheels", "<b>wheels</b> " + f3(S.vel_r[i]) + " / " + f3(S.vel_l[i]) + " rad/s"]];
+    var irs = [];
+    for (var k = 0; S["ir" + k]; k++) { irs.push(f3(S["ir" + k][i])); }
+    if (irs.length) { parts.push(["IR", "<b>IR</b> " + irs.join(" ")]); }
+    SIGS.forEach(function (g) {             // the values that are not drawn: labels, counts, events that hold
+      var d = SD[g.name], key = "signal " + g.name;
+      if (g.kind === "label") { var v = runAt(d, i); if (v) { parts.push([key, "<b>" + escapeHtml(g.name) + "</b> " + escapeHtml(visible(v))]); } }
+      if (g.kind === "count" && d[i] !== null) { parts.push([key, "<b>" + escapeHtml(g.name) + "</b> " + d[i]]); }
+      if (g.kind === "flag" && d[i] === 1) { parts.push([key, "<b>" + escapeHtml(g.name) + "</b>"]); }
+    });
+    if (D.ending && D.ending.message && i === N - 1) { parts.push(["ending", "<span class=\"crash\">ended: " + escapeHtml(visible(D.ending.message)) + "</span>"]); }
+    if (D.collision && S.t[i] >= D.collision.t - 1e-9) { parts.push(["collision", "<span class=\"crash\">collided at t = " + D.collision.t.toFixed(2) + " s</span>"]); }
+    return parts;
+  }
+  function statusLine(parts) { return parts.map(function (p) { return p[1]; }).join(" &nbsp; "); }
+  // The widest status line of the whole run: every part that ever shows, each at its widest (measured in the
+  // status line's own font). The line keeps the height that one needs, so the page never jumps while a run
+  // plays (at 1024 px it wrapped to a second line when fw_direction appeared, covering the lowest chart).
+  var widestStatus = null;
+  function widestStatusLine() {
+    if (widestStatus !== null) { return widestStatus; }
+    var g = document.createElement("canvas").getContext("2d"), cs = getComputedStyle(statusEl);
+    g.font = "600 " + cs.fontSize + " " + cs.fontFamily;   // bold: the widest the parts' words get
+    var order = [], widest = {}, every = Math.max(1, Math.floor(N / 4000));   // a very long run: a sample
+    function see(i) {
+      statusParts(i).forEach(function (p) {
+        var w = g.measureText(p[1].replace(/<[^>]*>/g, "")).width;
+        if (!(p[0] in widest)) { order.push(p[0]); widest[p[0]] = { w: -1 }; }
+        if (w > widest[p[0]].w) { widest[p[0]] = { w: w, html: p[1] }; }
+      });
+    }
+    for (var i = 0; i < N; i += every) { see(i); }
+    see(N - 1);
+    widestStatus = order.map(function (k) { return widest[k].html; }).join(" &nbsp; ");
+    return widestStatus;
+  }
+  function reserveStatusHeight() {
+    var now = statusEl.innerHTML;
+    statusEl.style.minHeight = "";
+    statusEl.innerHTML = widestStatusLine();
+    statusEl.style.minHeight = statusEl.getBoundingClientRect().height + "px";
+    statusEl.innerHTML = now;
+  }
   function updateStatus() {
     var i = st.index;
     clock.textContent = "t = " + S.t[i].toFixed(2) + " / " + TEND.toFixed(2) + " s";
     if (String(slider.value) !== String(i)) { slider.value = i; }
     if (i === st.lastStatusIndex) { return; }
     st.lastStatusIndex = i;
-    var parts = ["<b>step</b> " + i, "<b>state</b> " + escapeHtml(visible(stateAt(i))),
-                 "<b>true</b> (" + f3(S.x[i]) + ", " + f3(S.y[i]) + ", " + f3(wrap(S.theta[i])) + ")",
-                 "<b>estimate</b> (" + f3(S.x_est[i]) + ", " + f3(S.y_est[i]) + ", " + f3(wrap(S.theta_est[i])) + ")",
-                 "<b>wheels</b> " + f3(S.vel_r[i]) + " / " + f3(S.vel_l[i]) + " rad/s"];
-    var irs = [];
-    for (var k = 0; S["ir" + k]; k++) { irs.push(f3(S["ir" + k][i])); }
-    if (irs.length) { parts.push("<b>IR</b> " + irs.join(" ")); }
-    SIGS.forEach(function (g) {             // the values that are not drawn: labels, counts, events that hold
-      var d = SD[g.name];
-      if (g.kind === "label") { var v = runAt(d, i); if (v) { parts.push("<b>" + escapeHtml(g.name) + "</b> " + escapeHtml(visible(v))); } }
-      if (g.kind === "count" && d[i] !== null) { parts.push("<b>" + escapeHtml(g.name) + "</b> " + d[i]); }
-      if (g.kind === "flag" && d[i] === 1) { parts.push("<b>" + escapeHtml(g.name) + "</b>"); }
-    });
-    if (D.ending && D.ending.message && i === N - 1) { parts.push("<span class=\"crash\">ended: " + escapeHtml(visible(D.ending.message)) + "</span>"); }
-    if (D.collision && S.t[i] >= D.collision.t - 1e-9) { parts.push("<span class=\"crash\">collided at t = " + D.collision.t.toFixed(2) + " s</span>"); }
-    statusEl.innerHTML = parts.join(" &nbsp; ");
+    statusEl.innerHTML = statusLine(statusParts(i));
   }
   // A state name comes from student code: control and bidi characters are shown (\x1b, \u202e), not obeyed.
   function visible(s) {
@@ -646,6 +737,7 @@
                center: [st.cx, st.cy], following: st.following, tEnd: TEND, rows: N,
                robotScreenXY: [r.left + sx(q[0]), r.top + sy(q[1])],
                canvasRect: [r.left, r.top, r.width, r.height], collisionLabel: st.crashLabel || null,
+               collisionBox: st.crashBox || null, statusWidest: widestStatusLine(),
                scaleBar: st.scaleBar || null, plotEnd: TPLOT,
                labelMargins: plots.map(function (p) { return p.labelMargin; }) };
     },
@@ -667,8 +759,11 @@
     trace: D
   };
 
+  reserveStatusHeight();
+  window.addEventListener("resize", reserveStatusHeight);
   resize();
   home();
   render();
   if (!window.ResizeObserver) { document.body.setAttribute("data-ready", "1"); }
+  }
 })();

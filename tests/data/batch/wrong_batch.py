@@ -44,7 +44,7 @@ def accept_every_name(*_args: object) -> None:
     """No check of ids or paths: names that cannot exist on disk go on to the grading process."""
 
 
-def keep_scratch(_scratch: object) -> None:
+def keep_scratch(_scratch: object, _kill: object = None) -> None:
     """Leaves a killed grading process's temporary folder (student code inside) where it is."""
 
 

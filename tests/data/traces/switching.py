@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 
-from simiam.robot.quickbot import spec_for_week
+from simiam.course.weeks import spec_for_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
 

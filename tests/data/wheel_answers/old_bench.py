@@ -21,7 +21,7 @@ import time
 from simiam.course.folders import NotInCheckout, instructor_tool
 from simiam.machine import load_after_line, load_average, machine_line, ratio
 from simiam.robot.ir_sensor import VOLTAGE_COEFFS, mounted_cone
-from simiam.robot.quickbot import spec_for_week
+from simiam.course.weeks import spec_for_week
 from simiam.simulator import Simulator
 from simiam.world import load_world
 

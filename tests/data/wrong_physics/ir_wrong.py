@@ -5,7 +5,7 @@ from simiam.physics.ir_ranging import cone_range, cone_range_exact
 from simiam.physics.segments import ObstacleEdges
 from simiam.physics.transform import transform_fast
 from simiam.robot.ir_sensor import distance_to_raw, ir_voltage, mounted_cone
-from simiam.robot.quickbot import spec_for_week
+from simiam.course.weeks import spec_for_week
 from simiam.world import load_world
 
 SPEC = spec_for_week(4)

@@ -1,11 +1,11 @@
 """GoToGoal: a PID regulator that steers the robot to the goal (x_g, y_g) at a constant speed v.
 
 Student blocks (week 3, shipped filled in from week 4) and the placeholders the stub would get:
-  1. __init__ gains: `self.Kp = 0`, `self.Ki = 0`, `self.Kd = 0` (tune them: theta should settle within
-     10% in 3 s or less, with at most 10% overshoot).
-  2. heading to the goal: `u_x = 0`, `u_y = 0`, `theta_g = 0`.
-  3. heading error wrapped into [-pi, pi]: `e_k = 0`.
-  4. PID terms: `e_P = 0`, `e_I = 0`, `e_D = 0`.
+  part 1, the heading to the goal (1st block of execute): `u_x = 0`, `u_y = 0`, `theta_g = 0`.
+  part 2, the heading error wrapped into [-pi, pi] (2nd block of execute): `e_k = 0`.
+  part 3, the PID terms (3rd block of execute): `e_P = 0`, `e_I = 0`, `e_D = 0`.
+  part 3, the __init__ gains: `self.Kp = 0`, `self.Ki = 0`, `self.Kd = 0` (tune them: theta settles
+     within 10% in 3 s or less, with at most 10% overshoot). Part 4, ensure_w, is in qb_supervisor.py.
 With the placeholders the robot drives straight ahead.
 """
 

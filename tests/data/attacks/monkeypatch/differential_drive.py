@@ -27,7 +27,7 @@ def honest():
 
 def attack(**args):
     import grader.inside.protocol as protocol
-    import simiam.robot.quickbot as quickbot
+    import simiam.course.weeks as weeks
 
     try:
         import grader.sandbox.validate as validate  # grader-side: no longer importable in the worker
@@ -38,6 +38,6 @@ def attack(**args):
     math.sqrt = lambda x: 0.0
     numpy.allclose = lambda *a, **k: True
     numpy.isclose = lambda *a, **k: True
-    quickbot.spec_for_week = lambda week: None
+    weeks.spec_for_week = lambda week: None
     protocol.to_json = lambda value, **k: [100, 100]
     return honest()

@@ -24,13 +24,13 @@ def honest():
 
 
 def attack(**args):
-    import simiam.robot.quickbot as quickbot
+    import simiam.course.weeks as weeks
 
-    spec = quickbot.spec_for_week(3)
+    spec = weeks.spec_for_week(3)
     for name in ('max_vel', 'min_vel'):
         try:
             object.__setattr__(spec, name, 1e9)
         except Exception:
             pass
-    quickbot.spec_for_week = lambda week: spec
+    weeks.spec_for_week = lambda week: spec
     return {'max_vel': spec.max_vel}

@@ -1,0 +1,3 @@
+"""Imports nothing of the package."""
+
+LIMIT = 3
