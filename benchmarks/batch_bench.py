@@ -44,8 +44,10 @@ def bench(week: int, jobs: int, n: int, kind: str, sandbox: str) -> dict:
         stalls = ChainStalls()
         with Stopwatch() as sw:
             stalls.start()
+            # the visible checks, as the figures quoted in docs/performance.md were measured (a batch's
+            # default, official grading, adds the week's hidden checks)
             report = run_batch(BatchOptions(week=week, batch_dir=klass, out=out, seed=2014, jobs=jobs,
-                                            quiet=True, force=True, sandbox=sandbox))
+                                            quiet=True, force=True, sandbox=sandbox, hidden=False))
             stalled = stalls.stop()
         seconds, cpu = sw.usage.wall, sw.usage.cpu - stalls.own_cpu
         results = [json.loads(p.read_text()) for p in out.glob("student*.json")]

@@ -5,7 +5,8 @@
     grade week2 --check week2.uni_to_diff.round_trip --case 'v=0.1,w=-2.0'   # replay one failing case
     grade week3 --solutions --hidden # the reference solutions, with the instructor's hidden checks
     grade all                        # every week
-    grade week3 --batch submissions/ --jobs 4 --out graded/
+    grade week3 --batch submissions/ --jobs 4 --out graded/   # official: hidden checks, secret seed
+    grade week3 path/to/alice --hidden --seed graded/          # one student with that batch's hidden set
     grade week3 --batch CS101-HW3_submissions.zip --roster gradebook.csv --deadline 2026-03-01T23:59-05:00 \
         --late-penalty 10%/day --late-cap 50%   # a Canvas, Moodle or Gradescope download as it comes
     grade handout week3 --out release/   # and: grade package gradescope|prairielearn|coursera weekN,
@@ -55,10 +56,13 @@ def _parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--json", dest="json_file", default=None, help="also write the result JSON to this file")
     p.add_argument(
-        "--seed", type=int, default=None,
-        help=f"fixes every random choice (default {DEFAULT_SEED}; with --batch a secret one kept in --out)"
+        "--seed", default=None, metavar="N|FOLDER",
+        help=f"fixes every random choice (default {DEFAULT_SEED}; with --batch a secret one kept in --out); "
+             "a batch output folder or its .seed file means that batch's seed",
     )
-    p.add_argument("--hidden", action="store_true", help="also run the hidden checks (official grading)")
+    p.add_argument("--hidden", action="store_true",
+                   help="also run the hidden checks (official grading; a --batch always does, unless "
+                        "--visible-only)")
     p.add_argument("--check", default=None, help="run only this check id, e.g. week3.pid.integral")
     p.add_argument("--case", default=None, help="with --check: replay one case, e.g. 'v=0.1,w=-2.0'")
     p.add_argument(
@@ -67,13 +71,19 @@ def _parser() -> argparse.ArgumentParser:
         choices=("auto", "bwrap", "subprocess"),
         help="how student code is isolated (default: bubblewrap when it works)",
     )
-    batch = p.add_argument_group("batch grading (one sub-folder or .zip per student, or a platform's "
-                                 "download)")
+    batch = p.add_argument_group("batch grading (official: hidden checks and the output folder's secret "
+                                 "seed)")
     batch.add_argument("--batch", default=None, metavar="SOURCE",
                        help="grade every submission in SOURCE: a folder with one sub-folder or .zip per "
                             "student id, or Canvas's submissions zip, Moodle's download or Gradescope's "
                             "export (the .zip as downloaded or its extracted folder), recognised by its"
                             " layout")
+    batch.add_argument("--visible-only", action="store_true",
+                       help="grade the batch with the visible checks only (not official grades)")
+    batch.add_argument("--only", default=None, metavar="ID[,ID...]",
+                       help="regrade these students, even when unchanged, and no one else")
+    batch.add_argument("--canvas-assignment", default=None, metavar="TITLE",
+                       help='the Canvas gradebook column of canvas_import.csv, e.g. "Week 3 (4411)"')
     batch.add_argument(
         "--jobs", type=int, default=None, help="submissions graded at once (default: the number of cores)"
     )
@@ -200,12 +210,26 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         weeks = list(week_numbers()) if args.week.lower() == "all" else [_week(args.week)]
+        if args.seed is not None:
+            from grader.batch.seed import parse_seed
+
+            args.seed = parse_seed(args.seed)
+        if args.visible_only and not args.batch:
+            raise ValueError("--visible-only is for --batch (a single grading runs the visible checks "
+                             "unless --hidden)")
         if args.case and not args.check:
             raise ValueError("--case needs --check ID (the check whose case you replay)")
-        if args.hidden:
+        if args.hidden or (args.batch and not args.visible_only):
             from grader.hidden import missing_hidden_set
 
-            missing_hidden_set(weeks)  # a student install: say so, rather than show the checks as errors
+            try:
+                missing_hidden_set(weeks)  # a student install: say so, rather than show the checks as errors
+            except ValueError as exc:
+                if args.batch:
+                    raise ValueError(f"{exc} A batch is official grading, which runs them; "
+                                     "--visible-only grades the class without them (not official "
+                                     "grades).") from None
+                raise
         if args.batch:
             if len(weeks) != 1:
                 raise ValueError("--batch grades one week at a time")

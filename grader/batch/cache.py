@@ -57,10 +57,13 @@ def grader_fingerprint() -> str:
     return f"{_package_version()}+{digest.hexdigest()[:12]}"
 
 
-def cache_key(week: int, seed: int, hidden: bool, submission_sha256: str, grader: str) -> str:
-    """The key a stored result must carry to be reused."""
-    material = json.dumps({"format": 1, "week": week, "seed": seed, "hidden": hidden,
-                           "submission": submission_sha256, "grader": grader}, sort_keys=True)
+def cache_key(week: int, seed: int, hidden: bool, submission_sha256: str, grader: str,
+              hidden_set: str = "") -> str:
+    """The key a stored result must carry to be reused. ``hidden_set`` is the digest of the hidden set
+    run (grader.hidden.identity): an edited ``instructor_tools/hidden/weekN.json`` regrades everyone."""
+    material = json.dumps({"format": 2, "week": week, "seed": seed, "hidden": hidden,
+                           "submission": submission_sha256, "grader": grader, "hidden_set": hidden_set},
+                          sort_keys=True)
     return hashlib.sha256(material.encode()).hexdigest()
 
 

@@ -1,6 +1,8 @@
-"""Class-level files built from the per-student results: ``gradebook.csv`` and the Gradescope export.
+"""Class-level files built from the per-student results: ``gradebook.csv``, the Gradescope export, and
+the grades and reports back into Canvas (grader.batch.canvas_export) and Moodle
+(grader.batch.moodle_export), all by the same rules (grader.batch.posted).
 
-Both are rebuilt from the stored ``<id>.json`` files at the end of every run (including a resumed or
+All are rebuilt from the stored ``<id>.json`` files at the end of every run (including a resumed or
 interrupted one), so they always agree with the per-student results on disk.
 """
 
@@ -11,9 +13,15 @@ import io
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+from grader.batch.canvas_export import write_canvas
+from grader.batch.identity import Identity
+from grader.batch.moodle_export import write_moodle
+from grader.batch.posted import class_rows
 from grader.batch.store import output_folder, write_atomic, write_json
 
 GRADESCOPE_VISIBILITY = ("visible", "hidden", "after_due_date", "after_published")
+DEFAULT_CANVAS_TITLE = "Autograder"        # with the week: "Autograder week 3" (--canvas-assignment)
+WITH_REPORT = ("graded", "invalid")        # statuses whose report goes back to the student
 
 
 def check_ids(results: dict[str, dict]) -> list[str]:
@@ -116,18 +124,35 @@ def gradescope_result(result: dict) -> dict:
     return export
 
 
-def write_exports(out: Path, results: dict[str, dict], stems: dict[str, str],
-                  meta: dict | None = None) -> None:
-    """Write ``gradebook.csv`` and ``gradescope/<id>/results.json`` for every student in ``results``.
+def write_exports(out: Path, results: dict[str, dict], stems: dict[str, str], meta: dict | None = None, *,
+                  week: int | None = None, title: str = DEFAULT_CANVAS_TITLE,
+                  roster: list[Identity] | None = None, missing: list[str] | None = None) -> dict:
+    """Write ``gradebook.csv``, ``gradescope/<id>/results.json`` for every student in ``results``, and the
+    Canvas and Moodle files (with a blank row for each roster student in ``missing``); returns what the
+    platform files left blank or out, and why, for ``batch.json``. ``roster`` and ``missing`` default to
+    the run's ``meta["roster"]`` (Identity JSON) and ``meta["missing"]``.
 
     The Gradescope files are written by a few threads: each write waits for its fsync, and at the end of
     a batch the cores have nothing else to do (400 students: 5.3-6.7 s one by one, 1.9-3.4 s so).
     No level below ``out`` is followed if it is a link (grader.batch.store.output_folder)."""
-    missing = [m for m in (meta or {}).get("missing") or [] if isinstance(m, str)]
+    meta = meta or {}
+    if missing is None:
+        missing = [m for m in meta.get("missing") or [] if isinstance(m, str)]
+    if roster is None:
+        roster = [i for i in map(Identity.from_json, meta.get("roster") or []) if i is not None]
     with output_folder(out):
         write_atomic(out / "gradebook.csv", gradebook_csv(results, missing))
+        max_score = class_max_score(results)
+        rows = class_rows(results, max_score, roster, missing)
+        pages = {sid: out / f"{stems[sid]}.html" for sid, r in results.items()
+                 if r.get("status") in WITH_REPORT}
+        if title == DEFAULT_CANVAS_TITLE and week is not None:
+            title = f"{DEFAULT_CANVAS_TITLE} week {week}"
+        record = {**write_canvas(out, rows, pages, title, max_score),
+                  **write_moodle(out, rows, pages, title, max_score)}
 
         def export(sid: str) -> None:
             write_json(out / "gradescope" / stems[sid] / "results.json", gradescope_result(results[sid]))
         with ThreadPoolExecutor(max_workers=8, thread_name_prefix="gradescope-export") as writers:
             list(writers.map(export, results))      # list(): the first error is raised here
+    return record

@@ -5,13 +5,18 @@ The run, in order:
 1. list the students in DIR: one sub-folder or ``.zip`` each, named by student id, or a course platform's
    download as it comes (grader/batch/intake.py), with the roster and late policy laid over them;
 2. for each student, lazily as grading slots free up: read the files safely, hash them, and skip the
-   student if their stored result carries the same cache key (submission, grader, seed); a refused
-   submission gets ``invalid`` at once without using a grading process;
+   student if their stored result carries the same cache key (submission, grader, seed, hidden set;
+   ``--only`` regrades the students it names, and only them); a refused submission gets ``invalid`` at
+   once without using a grading process;
 3. grade the rest in parallel, each in its own killable grading process under a wall budget
    (``timeout`` and ``crashed`` when that process hangs or dies);
-4. write each student's ``<id>.html`` then ``<id>.json`` atomically as soon as they finish;
-5. rebuild ``gradebook.csv``, ``gradescope/<id>/results.json``, ``summary.html`` and ``batch.json`` from
-   the per-student JSON files, also after Ctrl-C, so a rerun of the same command simply resumes.
+4. write each student's ``<id>.html`` then ``<id>.json`` atomically as soon as they finish (the result
+   it replaces kept under ``history/``, grader.batch.history);
+5. rebuild ``gradebook.csv``, the platform exports (grader.batch.exports), ``summary.html`` and
+   ``batch.json`` from the per-student JSON files, also after Ctrl-C, so a rerun of the same command
+   simply resumes.
+
+A batch is official grading: the hidden checks run unless ``--visible-only``.
 
 Every student gets the same seed (the contract: ``--seed N`` fixes every random choice), so results are
 comparable across the class and do not depend on order or ``--jobs``. Without ``--seed`` the output
@@ -23,7 +28,9 @@ in each result, apart from what is compared.
 from __future__ import annotations
 
 import argparse
+import copy
 import dataclasses
+import difflib
 import math
 import os
 import signal
@@ -35,9 +42,10 @@ from datetime import datetime, timezone
 from pathlib import Path
 from typing import Any, TextIO
 
+from grader.batch import history
 from grader.batch.cache import cache_key, grader_fingerprint, is_fresh
 from grader.batch.executors import DaskExecutor, ExecutorError, LocalExecutor
-from grader.batch.exports import write_exports
+from grader.batch.exports import DEFAULT_CANVAS_TITLE, write_exports
 from grader.batch.fallback_page import fallback_page
 from grader.batch.identity import Identity
 from grader.batch.intake import ClassList, IntakeError, IntakeOptions, read_class
@@ -58,6 +66,7 @@ from grader.batch.store import (
 from grader.batch.stored import well_formed
 from grader.batch.submissions import Student, Submission, pack, read_submission
 from grader.batch.summary import write_summary
+from grader.hidden.identity import hidden_set_identity
 from grader.result_size import bound_html, bound_result
 from grader.untrusted import printable
 from simiam.course.weeks import get_week, week_numbers
@@ -100,8 +109,10 @@ class BatchOptions:
     out: Path
     seed: int | None = None          # None: the output folder's secret seed (grader.batch.store.folder_seed)
     jobs: int = field(default_factory=default_jobs)
-    hidden: bool = False
+    hidden: bool = True              # official grading; False only with --visible-only
     force: bool = False
+    only: tuple[str, ...] = ()       # --only: regrade these students (even unchanged) and no one else
+    canvas_assignment: str = DEFAULT_CANVAS_TITLE
     quiet: bool = False
     executor: str = "local"
     scheduler: str | None = None
@@ -119,10 +130,21 @@ class BatchOptions:
         if not out or out == "reports":      # the single-submission default: keep a batch apart from it
             out = Path("reports") / f"batch-week{week}"
         seed = given.get("seed")
-        return cls(week=week, batch_dir=Path(given["batch"]), out=Path(out),
-                   seed=None if seed is None else int(seed),
-                   jobs=int(given.get("jobs") or default_jobs()), hidden=bool(given.get("hidden")),
-                   force=bool(given.get("force")), quiet=bool(given.get("quiet")),
+        if seed is not None and not isinstance(seed, int):
+            from grader.batch.seed import parse_seed
+
+            try:
+                seed = parse_seed(seed)
+            except ValueError as exc:
+                raise BatchError(str(exc)) from None
+        only = tuple(dict.fromkeys(i.strip() for i in (given.get("only") or "").split(",") if i.strip()))
+        if given.get("only") is not None and not only:
+            raise BatchError("--only needs at least one student id (--only ID[,ID...])")
+        # --hidden is accepted for old scripts: a batch runs the hidden checks unless --visible-only
+        return cls(week=week, batch_dir=Path(given["batch"]), out=Path(out), seed=seed,
+                   jobs=int(given.get("jobs") or default_jobs()), hidden=not given.get("visible_only"),
+                   force=bool(given.get("force")), quiet=bool(given.get("quiet")), only=only,
+                   canvas_assignment=given.get("canvas_assignment") or DEFAULT_CANVAS_TITLE,
                    executor=given.get("executor") or "local", scheduler=given.get("scheduler"),
                    sandbox=given.get("sandbox") or "auto",
                    budget_s=float(given.get("timeout") or DEFAULT_BUDGET_S),
@@ -138,8 +160,9 @@ def parse_week(value: object) -> int:
 
 
 def main(args: argparse.Namespace) -> int:
-    """Entry point behind ``grade weekN --batch DIR``. Exit status: 0 every submission graded, 1 some
-    invalid, timed out or crashed, 2 the batch could not run, 130 interrupted (rerun to resume)."""
+    """Entry point behind ``grade weekN --batch DIR``. Exit status: 0 every submission graded (with
+    ``--only``: every named one), 1 some invalid, timed out or crashed, 2 the batch could not run, 130
+    interrupted (rerun to resume)."""
     def stop(_signum: int, _frame: Any) -> None:
         raise KeyboardInterrupt
     try:
@@ -158,6 +181,9 @@ def main(args: argparse.Namespace) -> int:
         return 2
     if report["interrupted"]:
         return 130
+    if options.only:        # what was asked: every named student graded
+        named = [report["per_student"].get(s, {}).get("status") for s in options.only]
+        return 0 if all(status == "graded" for status in named) else 1
     return 0 if report["counts"]["graded"] == report["students"] else 1
 
 
@@ -192,6 +218,7 @@ def run_batch(options: BatchOptions, grade_fn: Callable[[dict], dict] | str | No
         raise BatchError(f"{options.batch_dir} has no student folders or .zip files"
                          if klass.layout == "folder" else f"{options.batch_dir}: no submissions found")
     stems = _stems(students)
+    _check_only(options.only, students)
     executor = executor if executor is not None else make_executor(options)
     try:
         with exclusive(out):
@@ -233,6 +260,23 @@ def _stems(students: list[Student]) -> dict[str, str]:
     return stems
 
 
+def _check_only(only: tuple[str, ...], students: list[Student]) -> None:
+    """BatchError, naming the nearest ids of the class, if ``--only`` names a student the class does not
+    have: nothing is graded then (a typo must not silently regrade no one)."""
+    known = [s.id for s in students]
+    unknown = [i for i in only if i not in set(known)]
+    if not unknown:
+        return
+    lines = []
+    for sid in unknown[:20]:
+        near = difflib.get_close_matches(sid, known, n=3, cutoff=0.6)
+        lines.append(f"{shown(sid)!r}" + (f" (did you mean {', '.join(repr(shown(n)) for n in near)}?)"
+                                          if near else ""))
+    more = f" and {len(unknown) - 20} more" if len(unknown) > 20 else ""
+    raise BatchError(f"--only names {len(unknown)} student(s) the class does not have: "
+                     f"{'; '.join(lines)}{more}; nothing was graded")
+
+
 class _Run:
     """State of one batch run: what is pending, what finished, and the progress line."""
 
@@ -243,6 +287,14 @@ class _Run:
         assert options.seed is not None, "run_batch resolves the seed (folder_seed) before a run starts"
         self.seed: int = options.seed
         self.grader = grader_fingerprint()
+        # the hidden set this grading runs (None with --visible-only): its digest is in the cache key, so an
+        # edited hidden set regrades everyone; results keep it without the variants (no hidden goal in a
+        # file a student may be handed), batch.json with them
+        try:
+            self.hidden_set = hidden_set_identity(options.week, self.seed) if options.hidden else None
+        except (ValueError, KeyError, TypeError) as exc:    # a hand-edited weekN.json that does not parse
+            raise BatchError(f"the hidden set of week {options.week} cannot be read ({printable(exc)}); "
+                             f"fix instructor_tools/hidden/week{options.week}.json") from None
         self.progress = Progress(len(self.students), stream=stream, quiet=options.quiet)
         for line in [] if options.quiet else klass.messages():
             self.progress.message(line)
@@ -254,15 +306,23 @@ class _Run:
 
     def plan(self) -> Iterator[dict]:
         """Tasks for the students that need grading, read one at a time as slots free up."""
+        only = set(self.options.only)
         for student in self.longest_first():
+            stem = self.stems[student.id]
+            if only and student.id not in only:     # --only: the others are left as they are
+                stored = read_json(self.out / f"{stem}.json")
+                if stored is not None:
+                    self.record[student.id] = {"status": stored.get("status"), "cached": True}
+                self.progress.done("skipped")
+                continue
             submission = read_submission(student, week=self.options.week)
             key = cache_key(self.options.week, self.seed, self.options.hidden, submission.sha256,
-                            self.grader)
-            stem = self.stems[student.id]
+                            self.grader, hidden_set=self.hidden_set["digest"] if self.hidden_set else "")
             stored = read_json(self.out / f"{stem}.json")
             # a result the machine spoiled (grader.under_load) is graded again by the next run, never reused
-            if not self.options.force and is_fresh(stored, key) and (self.out / f"{stem}.html").is_file() \
-                    and not (isinstance(stored, dict) and stored.get("under_load")):
+            if (not self.options.force and not only and is_fresh(stored, key)
+                    and (self.out / f"{stem}.html").is_file()
+                    and not (isinstance(stored, dict) and stored.get("under_load"))):
                 assert stored is not None
                 if self._restate(student, stem, stored):
                     self.record[student.id] = {"status": stored["status"], "cached": True}
@@ -294,12 +354,16 @@ class _Run:
         """Bring a reused result up to this run's identity and late policy without grading it again (its
         page's late section too); False when it must be graded again (its numbers cannot be trusted)."""
         identity = self._identity(student)
+        # the result as it was, for history/ when the late policy changes its score (a copy only then)
+        before = copy.deepcopy(stored) if self.klass.policy is not None or "late" in stored else None
         changed = settle_late(stored, identity, self.klass.policy, self.klass.extensions.get(student.id))
         if changed is None:
             return False
         batch = stored["batch"]
         if not changed and batch.get("identity") == identity.to_json():
             return True
+        if changed and before is not None:
+            batch["change"] = history.change(before, stored, history.archive(self.out, stem, before))
         if changed:
             page = self.out / f"{stem}.html"
             try:
@@ -343,7 +407,9 @@ class _Run:
         identity = self._identity(submission.student)
         result["grader_version"] = self.grader      # the batch's one version string (grader.batch.task)
         result["batch"] = {"student": sid, "cache_key": key, "submission_sha256": submission.sha256,
-                           "grader": self.grader, "root": submission.root, "identity": identity.to_json()}
+                           "grader": self.grader, "root": submission.root, "identity": identity.to_json(),
+                           "hidden_set": None if self.hidden_set is None else
+                           {k: v for k, v in self.hidden_set.items() if k != "variants"}}
         if result.get("status") == "held":
             result["score"] = None          # not graded, not charged: exports leave the grade blank
         elif settle_late(result, identity, self.klass.policy, self.klass.extensions.get(sid)) is None:
@@ -351,11 +417,16 @@ class _Run:
         if outcome.get("traceback"):
             result["batch"]["traceback"] = outcome["traceback"]
         timing = tm if isinstance(tm := result.get("timing"), dict) else {}
-        result["timing"] = {**timing, "batch_seconds": round(float(outcome.get("seconds") or 0.0), 3)}
-        result = bound_result(result)
+        result["timing"] = {**timing, "batch_seconds": round(float(outcome.get("seconds") or 0.0), 3),
+                            "graded_at": datetime.now(timezone.utc).isoformat(timespec="seconds")}
         stem = self.stems[sid]
-        # The old JSON goes first: until the new one is written this student has no result, so their
-        # HTML and JSON never come from two different gradings.
+        earlier = self._earlier(stem)
+        kept = history.archive(self.out, stem, earlier) if earlier is not None else None
+        asked = "only" if sid in self.options.only else "force" if self.options.force else None
+        result["batch"]["change"] = history.change(earlier, result, kept, asked)
+        result = bound_result(result)
+        # The old JSON goes first (kept in history/ above): until the new one is written this student has
+        # no result, so their HTML and JSON never come from two different gradings.
         (self.out / f"{stem}.json").unlink(missing_ok=True)
         html = bound_html(html) if isinstance(html, str) else None
         page = html or fallback_page(shown(sid), result)
@@ -372,6 +443,14 @@ class _Run:
             self.progress.message(f"{shown(sid)}: graded under load: regrade "
                                   f"({', '.join(under_load(result)[:6])} got no verdict on this machine)")
         self.progress.done(status)
+
+    def _earlier(self, stem: str) -> dict | None:
+        """The student's last stored result: the one in the folder, else the one moved to superseded/."""
+        for path in (self.out / f"{stem}.json", self.out / "superseded" / f"{stem}.json"):
+            stored = read_json(path)
+            if stored is not None:
+                return stored
+        return None
 
     def _settle(self, task: dict, outcome: dict) -> tuple[dict, str | None]:
         """The student's result from the grading outcome; anything malformed counts as ``crashed``."""
@@ -411,15 +490,18 @@ class _Run:
                 if r.get("status") == "held"}
         meta = {"week": self.options.week, "seed": self.seed, "hidden": self.options.hidden,
                 "grader": self.grader, "incomplete": incomplete, "not_graded": not_graded,
+                "changed": history.changed_rows(results),
                 **self.klass.meta(), "held": sorted(held), "held_reasons": held}
-        write_exports(self.out, results, stems, meta)
+        exported = write_exports(self.out, results, stems, meta, week=self.options.week,
+                                 title=self.options.canvas_assignment)
         write_summary(self.out, results, stems, meta)
-        report = {"format": "simiam-batch/1", **meta, "batch_dir": str(self.options.batch_dir.resolve()),
+        report = {"format": "simiam-batch/1", **meta, "hidden_set": self.hidden_set,
+                  "only": list(self.options.only), "batch_dir": str(self.options.batch_dir.resolve()),
                   "out": str(self.out), "force": self.options.force, "sandbox": self.options.sandbox,
                   **executor, "started": self.started.isoformat(timespec="seconds"),
                   "finished": datetime.now(timezone.utc).isoformat(timespec="seconds"),
                   "seconds": round(time.monotonic() - self.clock, 3), "interrupted": self.interrupted,
-                  "students": len(self.students), "counts": counts,
+                  "students": len(self.students), "counts": counts, "exports": exported,
                   # students the machine kept from a verdict (grader.under_load): the next run grades them
                   "under_load": regrade,
                   "this_run": {"graded_now": sum(not r["cached"] for r in self.record.values()),
@@ -436,7 +518,11 @@ class _Run:
     def _supersede(self, stem: str) -> None:
         """Move a student's files from an older grading (or a half-written pair) to ``superseded/``, so
         the output folder only ever shows the current grading; nothing is deleted but an older copy in
-        ``superseded/``. No link under the output folder is followed (grader.batch.store.move)."""
+        ``superseded/`` (the result itself is kept in ``history/`` first). No link under the output folder
+        is followed (grader.batch.store.move)."""
+        stored = read_json(self.out / f"{stem}.json")
+        if stored is not None:
+            history.archive(self.out, stem, stored)
         for name in (f"{stem}.json", f"{stem}.html", f"gradescope/{stem}", f"{REPLAYS}/{stem}"):
             move(self.out / name, self.out / "superseded" / name)
 
@@ -448,13 +534,15 @@ class _Run:
                 move(folder / name, self.out / "superseded" / "gradescope" / name)
 
     def _current(self, stored: dict) -> bool:
-        """True if a stored result was graded with this run's week, seed, grader and --hidden. An older
+        """True if a stored result was graded with this run's week, seed, grader and hidden set. An older
         one (a rerun with another seed, stopped half-way) is left out of the class files and counted as
         not graded yet, so the gradebook never mixes two gradings."""
         batch = b if isinstance(b := stored.get("batch"), dict) else {}
+        hidden_set = h if isinstance(h := batch.get("hidden_set"), dict) else {}
         return (stored.get("week") == self.options.week and stored.get("seed") == self.seed
                 and batch.get("grader") == self.grader
-                and bool(stored.get("hidden", self.options.hidden)) == self.options.hidden)
+                and bool(stored.get("hidden", self.options.hidden)) == self.options.hidden
+                and hidden_set.get("digest") == (self.hidden_set or {}).get("digest"))
 
     def _tell(self, report: dict) -> None:
         if self.options.quiet:

@@ -34,7 +34,7 @@ import stat
 import threading
 from collections.abc import Iterator
 from pathlib import Path
-from typing import TextIO
+from typing import BinaryIO, TextIO
 
 from simiam import safe_write
 
@@ -191,6 +191,19 @@ def entries(folder: Path) -> list[tuple[str, bool]]:
         return sorted((entry.name, entry.is_dir(follow_symlinks=False)) for entry in os.scandir(fd))
     finally:
         os.close(fd)
+
+
+def write_bytes_atomic(path: Path, data: bytes, mode: int | None = None) -> None:
+    """Write ``data`` (a zip of feedback files) to ``path`` as :func:`write_atomic` writes text."""
+    safe_write.write_bytes(path, data, mode=mode, fsync=True, below=_root_of(Path(path)))
+
+
+@contextlib.contextmanager
+def replacing(path: Path) -> Iterator[BinaryIO]:
+    """A binary stream whose bytes replace ``path`` atomically when the block ends (nothing is left if it
+    raises): a zip of feedback files written as it is built, never whole in memory."""
+    with safe_write.replacing(path, fsync=True, below=_root_of(Path(path))) as stream:
+        yield stream
 
 
 def write_json(path: Path, value: object, mode: int | None = None) -> None:

@@ -158,6 +158,13 @@ looks alike.</p>{% endif %}
 {{ names[:200]|join(", ") }}{% if names|length > 200 %} and {{ names|length - 200 }} more{% endif %}</p>
 {% endif %}{% endfor %}</div>{% endif %}
 </header>
+{% if changed %}<section id="changed"><h2>Changed since last grading</h2>
+<table><tr><th>student</th><th>before</th><th>now</th><th>why graded again</th></tr>
+{% for c in changed %}<tr><td>{{ c.student }}</td>
+<td class="n">{{ "%g"|format(c.before) if c.before is not none else "" }} {{ c.status_before }}</td>
+<td class="n">{{ "%g"|format(c.after) if c.after is not none else "" }} {{ c.status_after }}</td>
+<td>{{ c.reasons|join(", ") }}</td></tr>
+{% endfor %}</table></section>{% endif %}
 <section id="scores">
 <h2>Score distribution (graded submissions)</h2>
 {{ histogram }}
@@ -238,7 +245,7 @@ def summary_context(results: dict[str, dict], stems: dict[str, str], meta: dict)
         histogram=histogram_svg(graded, max_score or 1.0, title="Scores of graded submissions"),
         pass_rates=pass_rate_svg([(c["id"], c["pass_rate"]) for c in stats]) if stats else "",
         checks=stats, students=students, replay_groups=list(groups), intake=_intake(meta),
-        similarity=meta.get("similarity_page"))
+        similarity=meta.get("similarity_page"), changed=meta.get("changed") or [])
 
 
 def _late_points(result: dict) -> float | None:

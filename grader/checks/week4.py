@@ -352,15 +352,13 @@ def week4_world(ctx: Context) -> Outcome:
 
 def other_starts(ctx: Context) -> Outcome:
     from grader.hidden import load_hidden
-    from grader.hidden.draw import draw, turn_quarter
 
     data = load_hidden(4)
     if not data:
         return Outcome(
             0.0, "the instructor's hidden set is not here (it runs at official grading)", status="error"
         )
-    picks = draw(data["variants"], 3, f"{ctx.seed}:week4-variants",
-                 lambda v: (turn_quarter(v["turn"], v["of"]), v["mirror"]))
+    picks = hidden_picks(data, ctx.seed)
     good, lines, runs, done, margins = 0, [], [], [], Margins()
     for v in picks:
         world = _variant(load_world("week4"), v["turn"], v["of"], v["mirror"])
@@ -424,3 +422,11 @@ CHECKS = [
         visibility="hidden",
     ),
 ]
+
+
+def hidden_picks(data: dict, seed: int) -> list[dict]:
+    """The hidden variants `seed` draws from the hidden set `data` (grader.hidden.identity records them)."""
+    from grader.hidden.draw import draw, turn_quarter
+
+    return draw(data["variants"], 3, f"{seed}:week4-variants",
+                lambda v: (turn_quarter(v["turn"], v["of"]), v["mirror"]))

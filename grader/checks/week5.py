@@ -460,8 +460,7 @@ def hidden_runs(mode: str):
         if not data:
             return Outcome(0.0, "the instructor's hidden set is not here (it runs at official grading)",
                            status="error")
-        pool = [v for v in data["variants"] if v["mode"] == mode]
-        picks = random.Random(f"{ctx.seed}:week5-{mode}").sample(pool, min(HIDDEN_RUNS, len(pool)))
+        picks = hidden_picks(data, ctx.seed, mode)
         check_id = f"week5.{mode}.hidden"
         good, lines, details, done, margins = 0, [], [], [], Margins()
         for v in picks:
@@ -503,3 +502,10 @@ CHECKS = [
     Check("week5.switching.hidden", "switching: other starts and goals drawn per seed", "scenario", 1.0,
           hidden_runs("switching"), ALL, visibility="hidden"),
 ]
+
+
+def hidden_picks(data: dict, seed: int, mode: str) -> list[dict]:
+    """The hidden variants of `mode` that `seed` draws from the hidden set `data` (grader.hidden.identity
+    records them)."""
+    pool = [v for v in data["variants"] if v["mode"] == mode]
+    return random.Random(f"{seed}:week5-{mode}").sample(pool, min(HIDDEN_RUNS, len(pool)))

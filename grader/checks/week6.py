@@ -543,15 +543,13 @@ def _visible(direction: str, theta0: float):
 
 def hidden_laps(ctx: Context) -> Outcome:
     from grader.hidden import load_hidden
-    from grader.hidden.draw import draw, heading_quarter
 
     data = load_hidden(6)
     if not data:
         return Outcome(
             0.0, "the instructor's hidden set is not here (it runs at official grading)", status="error"
         )
-    picks = draw(data["variants"], 3, f"{ctx.seed}:week6-variants",
-                 lambda v: (v["direction"], heading_quarter(v["theta0"])))
+    picks = hidden_picks(data, ctx.seed)
     good, lines, runs, done, margins = 0, [], [], [], Margins()
     for v in picks:
         label = f"on the {v['direction']}, start heading {fmt(v['theta0'])}, d_fw = {fmt(v['d_fw'])} m"
@@ -655,3 +653,11 @@ CHECKS = [
         visibility="hidden",
     ),
 ]
+
+
+def hidden_picks(data: dict, seed: int) -> list[dict]:
+    """The hidden variants `seed` draws from the hidden set `data` (grader.hidden.identity records them)."""
+    from grader.hidden.draw import draw, heading_quarter
+
+    return draw(data["variants"], 3, f"{seed}:week6-variants",
+                lambda v: (v["direction"], heading_quarter(v["theta0"])))

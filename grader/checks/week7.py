@@ -438,15 +438,13 @@ def release_goal(ctx: Context) -> Outcome:
 
 def other_goals(ctx: Context) -> Outcome:
     from grader.hidden import load_hidden
-    from grader.hidden.draw import draw, turn_quarter
 
     data = load_hidden(7)
     if not data:
         return Outcome(0.0, "the instructor's hidden set is not here (it runs at official grading)",
                        status="error")
     # three different start headings (issue 21: seed 2014 once drew three variants turned 0 degrees)
-    picks = draw(data["variants"], 3, f"{ctx.seed}:week7-variants",
-                 lambda v: (turn_quarter(v["turn"], v["of"]),))
+    picks = hidden_picks(data, ctx.seed)
     good, lines, runs, done, margins = 0, [], [], [], Margins()
     for v in picks:
         world, goal = turned(load_world(ctx.config.world), tuple(v["goal"]), v["turn"], v["of"])
@@ -476,3 +474,11 @@ CHECKS = [
     Check("week7.navigate.other_goals", "other goals and start headings drawn per seed", "scenario", 1.5,
           other_goals, ALL, visibility="hidden", plots=("trajectory", "states")),
 ]
+
+
+def hidden_picks(data: dict, seed: int) -> list[dict]:
+    """The hidden variants `seed` draws from the hidden set `data` (grader.hidden.identity records them)."""
+    from grader.hidden.draw import draw, turn_quarter
+
+    return draw(data["variants"], 3, f"{seed}:week7-variants",
+                lambda v: (turn_quarter(v["turn"], v["of"]),))

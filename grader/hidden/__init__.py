@@ -1,9 +1,10 @@
 """The instructor's hidden set: parameters of the hidden scenario variants, kept as data.
 
-`grade --hidden` runs the hidden checks; those that need data read it from `$SIMIAM_HIDDEN/weekN.json`
-when that variable names a folder, else from the course checkout's instructor_tools/hidden/. The student
-package (a wheel) holds no hidden set: it grades every visible check and says the hidden ones run at
-official grading.
+`grade --hidden` (and a batch, unless --visible-only) runs the hidden checks; those that need data read
+it from `$SIMIAM_HIDDEN/weekN.json` when that variable names a folder, else from the course checkout's
+instructor_tools/hidden/. Which hidden set a grading ran is recorded by grader/hidden/identity.py. The
+student package (a wheel) holds no hidden set: it grades every visible check and says the hidden ones run
+at official grading.
 """
 
 from __future__ import annotations

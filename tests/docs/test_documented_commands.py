@@ -177,3 +177,25 @@ def test_every_option_of_run_migrate_and_grade_is_documented() -> None:
     missing = [(c, o) for c, o in wanted
                if not any(c in p and re.search(re.escape(o) + r"\b", p) for p in paragraphs)]
     assert missing == []
+
+
+def test_the_readme_instructor_line_grades_with_the_hidden_checks(folders: dict[str, Path]) -> None:
+    """Issue 29: the README's `grade week3 --batch submissions/ --out graded/` gave official-looking
+    grades without the hidden checks. Run as written (in the README's checkout copy: a rerun after the
+    block test only resumes), every result ran week 3's hidden checks with the folder's secret seed."""
+    import json
+
+    line = next(c for c in COMMANDS if c.file == "README.md" and c.text.startswith("grade week3 --batch "))
+    checkout = folders["README.md"]
+    ran = run(runnable(line), checkout, clean_env(folders["home"]), folders["marker"])
+    assert ran.returncode in (0, 1), ran.output[-1500:]
+    out = checkout / line.text.split("--out ")[1].split()[0]
+    seed = json.loads((out / ".seed").read_text())["seed"]
+    for student in ("alice", "bob"):
+        result = json.loads((out / f"{student}.json").read_text())
+        hidden = [c["id"] for c in result["checks"] if c.get("visibility") == "hidden"]
+        assert (result["hidden"], result["hidden_checks_not_run"], result["seed"]) == (True, 0, seed), student
+        assert sorted(hidden) == ["week3.go_to_goal.other_goals", "week3.pid.tracking_other_goal"], hidden
+        assert result["batch"]["hidden_set"]["checks"] == sorted(hidden)
+    record = json.loads((out / "batch.json").read_text())
+    assert record["hidden"] is True and record["hidden_set"]["seed"] == seed
