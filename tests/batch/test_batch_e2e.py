@@ -41,6 +41,7 @@ def per_student(out: Path) -> dict[str, dict]:
         if path.name != "batch.json":
             result = json.loads(path.read_text())
             result.pop("timing")
+            result.pop("time_budget", None)   # what the worker's clock measured: how it ran, not what
             found[path.stem] = result
     return found
 

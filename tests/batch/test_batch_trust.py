@@ -103,6 +103,7 @@ def _grade(base: Path, klass: Path, ids: dict, sandbox: str) -> dict:
 def stored(out: Path, sid: str) -> dict:
     result = json.loads((out / f"{student_stem(sid)}.json").read_text())
     result.pop("timing", None)
+    result.pop("time_budget", None)   # what the worker's clock measured: how it ran, not what
     return result
 
 

@@ -197,6 +197,8 @@ ALLOWED = {
     ("grader/batch/store.py", "move"): "moves the batch's own files within its output folder, descriptor-"
                                        "relative with every level below it opened O_NOFOLLOW (issue 30)",
     ("grader/batch/store.py", "_open_lock"): "os.open with O_NOFOLLOW",
+    ("grader/batch/export_files.py", "_read_file"): "os.open read-only with O_NOFOLLOW: reads a platform "
+                                                    "download, writes nothing",
     ("grader/batch/submissions.py", "unpack"): FRESH + ": the grading process's copy of a submission",
     ("grader/earlier.py", "reference_folder"): FRESH,
     ("grader/grading.py", "_splice"): FRESH,

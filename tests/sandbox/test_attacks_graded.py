@@ -47,7 +47,7 @@ def honest_points() -> float:
     ("os_exit", "error", "exit status 0"),
     ("kill_parent", "failed", "your vel_r was 0"),
     ("base_exception", "failed", "Boom: no score for you"),
-    ("monkeypatch", "failed", "expected a finite number"),
+    ("monkeypatch", "failed", "your vel_r was 0"),   # the robot the probe builds is patched away too
     ("liar", "failed", "a Whatever object"),
     ("nan", "failed", "NaN"),
     ("inf", "failed", "infinity"),
