@@ -29,11 +29,21 @@ PROBE_METHODS = ("probe", "probe_each")
 PASSED_ON = {("grader.checks", "Context")}
 
 
+def _source(module: str) -> Path:
+    """The checkout's source of one of our modules, by its name: not the module's __file__, which another
+    test in the same process may have left pointing at a sourceless copy (a wheel's bytecode)."""
+    base = ROOT.joinpath(*module.split("."))
+    for path in (base.with_suffix(".py"), base / "__init__.py"):
+        if path.is_file():
+            return path
+    return Path(inspect.getfile(sys.modules[module]))
+
+
 @functools.cache
 def _tree(module: str) -> tuple[ast.Module, dict[str, ast.AST], dict[str, tuple[str, str | None]]]:
     """A module's syntax tree, its top-level definitions by name, and what it imports by local name
     ((module, attribute) for `from m import a`; (module, None) for `import m as x`)."""
-    path = Path(inspect.getfile(sys.modules[module]))
+    path = _source(module)
     tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
     defined: dict[str, ast.AST] = {}
     imported: dict[str, tuple[str, str | None]] = {}
