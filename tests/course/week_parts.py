@@ -75,13 +75,17 @@ def _tree(module: str) -> tuple[ast.Module, dict[str, ast.AST], dict[str, tuple[
 
 @functools.cache
 def _ours(module: str) -> bool:
-    """Code whose probes count: modules of this checkout outside the simulator (which never probes)."""
-    found = sys.modules.get(module)
-    file = getattr(found, "__file__", None)
-    if file is None:
+    """Code whose probes count: Python source of this checkout outside the simulator (which never probes)
+    and outside any virtual environment in it (a clean clone keeps its .venv, numpy's compiled modules
+    included, inside the checkout)."""
+    file = getattr(sys.modules.get(module), "__file__", None)
+    if file is None or not file.endswith(".py"):
         return False
     path = Path(file).resolve()
-    return path.is_relative_to(ROOT) and not path.is_relative_to(ROOT / "simiam")
+    if not path.is_relative_to(ROOT):
+        return False
+    parts = path.relative_to(ROOT).parts
+    return parts[0] != "simiam" and not parts[0].startswith(".") and "site-packages" not in parts
 
 
 def _origin(run: Callable[..., Any]) -> tuple[str, str]:

@@ -78,15 +78,21 @@ def grade_paused(label: str, tmp_path: Path, busy: Saturated, seed: int) -> tupl
 
 @pytest.mark.parametrize("label", EVERY if FULL else SUBSET)
 def test_the_verdict_under_load_and_pauses_is_the_snapshots(label: str, tmp_path: Path, saturated) -> None:
-    began = time.monotonic()
-    result, pauses = grade_paused(label, tmp_path, saturated, seed=sum(map(ord, label)))
     name, _, check = label.partition("::")
     expected = {k: v for k, v in VERDICTS[name].items() if not check or k == check}
-    print(f"{label}: {time.monotonic() - began:.1f} s, {pauses} pauses of {PAUSE:g} s, "
-          f"time {result.get('time_budget')}")
-    assert pauses >= 1, "no pause landed in the grading: the test did not test"
-    assert "under_load" not in result, result["under_load"]
-    assert differences(result, expected) == ""
+    # a one-check grading can end before the first random pause on a fast machine: grade it again (each
+    # grading's verdict must equal the snapshot) until a pause lands, three gradings at most
+    for attempt in range(3):
+        began = time.monotonic()
+        result, pauses = grade_paused(label, tmp_path / str(attempt), saturated,
+                                      seed=sum(map(ord, label)) + attempt)
+        print(f"{label}: {time.monotonic() - began:.1f} s, {pauses} pauses of {PAUSE:g} s, "
+              f"time {result.get('time_budget')}")
+        assert "under_load" not in result, result["under_load"]
+        assert differences(result, expected) == ""
+        if pauses >= 1:
+            break
+    assert pauses >= 1, "no pause landed in three gradings: the test did not test"
 
 
 def paused_at_step_20(saturated: Saturated, monkeypatch) -> tuple[str, int]:
