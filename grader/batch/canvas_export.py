@@ -19,12 +19,12 @@ from __future__ import annotations
 
 import csv
 import io
-import zipfile
 from pathlib import Path
 
+from grader.batch.feedback_zip import write_feedback_zip
 from grader.batch.identity import Identity
 from grader.batch.posted import Posted, listed, points
-from grader.batch.store import replacing, write_atomic
+from grader.batch.store import write_atomic
 
 HEADER = ["Student", "ID", "SIS User ID", "SIS Login ID", "Section"]
 POINTS_POSSIBLE = "    Points Possible"
@@ -88,25 +88,8 @@ def write_canvas(out: Path, rows: list[Posted], pages: dict[str, Path], title: s
     the students left blank and why, and those with no feedback entry and why."""
     write_atomic(out / "canvas_import.csv", canvas_csv(rows, title, max_score))
     blank = {r.identity.id: r.why_blank for r in rows if not r.grade}
-    placed, unplaced = 0, {}
-    with replacing(out / "canvas_feedback.zip") as stream, zipfile.ZipFile(stream, "w",
-                                                                          zipfile.ZIP_DEFLATED) as archive:
-        for row in rows:
-            sid = row.identity.id
-            page = pages.get(sid)
-            if page is None:
-                continue                # no report: blank grade, said in `blank`
-            name = entry_name(row.identity)
-            if not name:
-                unplaced[sid] = "no file of a Canvas download to attach the report to"
-                continue
-            try:
-                data = page.read_bytes()
-            except OSError as exc:
-                unplaced[sid] = f"report not readable: {exc.strerror}"
-                continue
-            archive.writestr(zipfile.ZipInfo(name, date_time=(2020, 1, 1, 0, 0, 0)), data,
-                             compress_type=zipfile.ZIP_DEFLATED)
-            placed += 1
+    placed, unplaced = write_feedback_zip(out / "canvas_feedback.zip", rows, pages,
+                                          lambda row: entry_name(row.identity),
+                                          "no file of a Canvas download to attach the report to")
     return {"canvas_import.csv": {"rows": len(rows), "title": title, **listed("blank", blank)},
             "canvas_feedback.zip": {"entries": placed, **listed("not_included", unplaced)}}

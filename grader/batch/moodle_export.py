@@ -27,13 +27,13 @@ from __future__ import annotations
 import csv
 import io
 import re
-import zipfile
 from pathlib import Path
 
 from grader.batch.canvas_export import csv_cell
+from grader.batch.feedback_zip import write_feedback_zip
 from grader.batch.identity import Identity
 from grader.batch.posted import Posted, listed, points
-from grader.batch.store import replacing, write_atomic
+from grader.batch.store import write_atomic
 
 WORKSHEET = ["Identifier", "Full name", "Email address", "Grade", "Maximum Grade", "Last modified (grade)",
              "Feedback comments"]
@@ -111,26 +111,10 @@ def write_moodle(out: Path, rows: list[Posted], pages: dict[str, Path], title: s
     """Write the worksheet, the gradebook CSV and the feedback zip; returns their record for batch.json."""
     write_atomic(out / "moodle_grading_worksheet.csv", worksheet_csv(rows, max_score))
     write_atomic(out / "moodle_gradebook.csv", gradebook_csv(rows, title))
-    placed, unplaced = 0, {}
-    with replacing(out / "moodle_feedback.zip") as stream, zipfile.ZipFile(stream, "w",
-                                                                          zipfile.ZIP_DEFLATED) as archive:
-        for row in rows:
-            sid = row.identity.id
-            page = pages.get(sid)
-            if page is None:
-                continue
-            folder = folder_name(row.identity)
-            if not folder:
-                unplaced[sid] = "no Moodle participant id"
-                continue
-            try:
-                data = page.read_bytes()
-            except OSError as exc:
-                unplaced[sid] = f"report not readable: {exc.strerror}"
-                continue
-            archive.writestr(zipfile.ZipInfo(f"{folder}/feedback.html", date_time=(2020, 1, 1, 0, 0, 0)),
-                             data, compress_type=zipfile.ZIP_DEFLATED)
-            placed += 1
+    placed, unplaced = write_feedback_zip(
+        out / "moodle_feedback.zip", rows, pages,
+        lambda row: f"{folder}/feedback.html" if (folder := folder_name(row.identity)) else "",
+        "no Moodle participant id")
     in_sheet = [r for r in rows if participant_id(r.identity)]
     left_out = {r.identity.id: "no Moodle participant id" for r in rows if not participant_id(r.identity)}
     blank = {r.identity.id: r.why_blank for r in in_sheet if not r.grade}
