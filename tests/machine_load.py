@@ -19,6 +19,10 @@ import sys
 import threading
 import time
 
+# Spins while the process that started it lives: a test run killed mid-module (no __exit__) leaves no
+# spinner loading the machine for whatever runs next.
+SPIN = "import os, sys\nwhile os.getppid() == int(sys.argv[1]):\n    for _ in range(1_000_000): pass"
+
 
 class Saturated:
     """`count` processes spinning at full speed until the block ends (then killed by their pids)."""
@@ -29,7 +33,7 @@ class Saturated:
 
     def __enter__(self) -> Saturated:
         for _ in range(self.count):
-            self.procs.append(subprocess.Popen([sys.executable, "-c", "while True: pass"],
+            self.procs.append(subprocess.Popen([sys.executable, "-c", SPIN, str(os.getpid())],
                                                stdin=subprocess.DEVNULL))
         return self
 
