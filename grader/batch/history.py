@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 import math
 import re
+from datetime import datetime, timezone
 from pathlib import Path
 
 from grader.batch.store import read_json, write_json
@@ -73,16 +74,19 @@ def reasons(old: dict, new: dict, asked: str | None = None) -> list[str]:
 
 def change(old: dict | None, new: dict, kept: str | None, asked: str | None = None) -> dict | None:
     """``batch.change`` of ``new``: None for a first grading; else the score and status before and after,
-    the reasons (:func:`reasons`) and where the earlier result is kept."""
+    the reasons (:func:`reasons`), where the earlier result is kept and when (``at``, UTC)."""
     if old is None:
         return None
     return {"score_before": _score(old), "score_after": _score(new), "status_before": old.get("status"),
-            "status_after": new.get("status"), "reasons": reasons(old, new, asked), "history": kept}
+            "status_after": new.get("status"), "reasons": reasons(old, new, asked), "history": kept,
+            "at": datetime.now(timezone.utc).isoformat(timespec="seconds")}
 
 
-def changed_rows(results: dict[str, dict]) -> list[dict]:
+def changed_rows(results: dict[str, dict], since: datetime | None = None) -> list[dict]:
     """The students whose score or status changed at their last grading: ``[{"student", "before",
-    "after", "status_before", "status_after", "reasons"}]``, for batch.json and the summary."""
+    "after", "status_before", "status_after", "reasons", "at", "this_run"}]``, for batch.json and the
+    summary. ``this_run``: the change was made at or after ``since`` (a regrade, or a late policy applied
+    again, by this run); those come first, so an instructor tells this run's changes from earlier ones."""
     rows = []
     for sid, result in sorted(results.items()):
         batch = b if isinstance(b := result.get("batch"), dict) else {}
@@ -93,11 +97,26 @@ def changed_rows(results: dict[str, dict]) -> list[dict]:
         if before == after and record.get("status_before") == record.get("status_after"):
             continue
         words = record.get("reasons")
+        at = _when(record.get("at"))
         rows.append({"student": sid, "before": before, "after": after,
                      "status_before": str(record.get("status_before"))[:20],
                      "status_after": str(record.get("status_after"))[:20],
-                     "reasons": [w for w in words if w in REASONS] if isinstance(words, list) else []})
+                     "reasons": [w for w in words if w in REASONS] if isinstance(words, list) else [],
+                     "at": at.isoformat(timespec="seconds") if at else "",
+                     "this_run": bool(at and since and at >= since.replace(microsecond=0))})
+    rows.sort(key=lambda row: not row["this_run"])     # stable: by student within each part
     return rows
+
+
+def _when(value: object) -> datetime | None:
+    """A change's ``at`` read back (a stored result is checked, never trusted): an aware time, else None."""
+    if not isinstance(value, str) or not _STAMP.match(value):
+        return None
+    try:
+        when = datetime.fromisoformat(value.replace("Z", "+00:00"))
+    except ValueError:
+        return None
+    return when if when.tzinfo is not None else None
 
 
 def _finite(value: object) -> object:

@@ -490,7 +490,7 @@ class _Run:
                 if r.get("status") == "held"}
         meta = {"week": self.options.week, "seed": self.seed, "hidden": self.options.hidden,
                 "grader": self.grader, "incomplete": incomplete, "not_graded": not_graded,
-                "changed": history.changed_rows(results),
+                "changed": history.changed_rows(results, self.started),
                 **self.klass.meta(), "held": sorted(held), "held_reasons": held}
         exported = write_exports(self.out, results, stems, meta, week=self.options.week,
                                  title=self.options.canvas_assignment)

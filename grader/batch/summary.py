@@ -158,9 +158,10 @@ looks alike.</p>{% endif %}
 {{ names[:200]|join(", ") }}{% if names|length > 200 %} and {{ names|length - 200 }} more{% endif %}</p>
 {% endif %}{% endfor %}</div>{% endif %}
 </header>
-{% if changed %}<section id="changed"><h2>Changed since last grading</h2>
-<table><tr><th>student</th><th>before</th><th>now</th><th>why graded again</th></tr>
+{% if changed %}<section id="changed"><h2>Scores changed by a regrade</h2>
+<table><tr><th>student</th><th>graded again</th><th>before</th><th>now</th><th>why graded again</th></tr>
 {% for c in changed %}<tr><td>{{ c.student }}</td>
+<td>{{ "this run" if c.this_run else (c.at[:16]|replace("T", " ") or "earlier") }}</td>
 <td class="n">{{ "%g"|format(c.before) if c.before is not none else "" }} {{ c.status_before }}</td>
 <td class="n">{{ "%g"|format(c.after) if c.after is not none else "" }} {{ c.status_after }}</td>
 <td>{{ c.reasons|join(", ") }}</td></tr>

@@ -96,7 +96,8 @@ def test_canvas_download_to_canvas_import_and_feedback_zip(tmp_path: Path) -> No
     assert record["this_run"]["graded_now"] == 0
     assert record["changed"] == [{"student": "102", "before": 10.0, "after": 11.25,
                                   "status_before": "graded", "status_after": "graded",
-                                  "reasons": ["late policy"]}]
+                                  "reasons": ["late policy"], "at": record["changed"][0]["at"],
+                                  "this_run": True}]        # changed by this run, though not graded again
     kept = [json.loads(p.read_text()) for p in (out / "history" / "102").glob("*.json")]
     assert [k["score"] for k in kept] == [10.0]
 

@@ -146,10 +146,18 @@ def test_history_keeps_every_earlier_result_and_says_whose_score_changed_and_why
     (klass / "alice" / "answer.txt").write_text("score 7\n")
     report, again = graded(tmp_path, monkeypatch)
     assert again == ["alice"]
+    row = report["changed"][0]
     assert report["changed"] == [{"student": "alice", "before": 3.0, "after": 7.0, "status_before": "graded",
-                                  "status_after": "graded", "reasons": ["new submission"]}]
+                                  "status_after": "graded", "reasons": ["new submission"],
+                                  "at": row["at"], "this_run": True}]
+    assert row["at"][:2] == "20", row                        # when alice was graded again
     summary = (tmp_path / "out" / "summary.html").read_text()
-    assert "Changed since last grading" in summary and "new submission" in summary
+    assert "Scores changed by a regrade" in summary and "new submission" in summary and "this run" in summary
+    # a run that reuses alice's result still lists her change, but as an earlier regrade's, not this run's
+    report, none = graded(tmp_path, monkeypatch)
+    assert none == [] and [(r["student"], r["this_run"]) for r in report["changed"]] == [("alice", False)]
+    summary = (tmp_path / "out" / "summary.html").read_text()
+    assert "this run" not in summary and row["at"][:16].replace("T", " ") in summary
     report, third = graded(tmp_path, monkeypatch, seed=6)
     assert third == ["alice", "bob"] and report["changed"] == []
     out = tmp_path / "out"
