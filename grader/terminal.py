@@ -103,7 +103,7 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
         p.wrapped(f"numerics: {numerics['note']}", "  ")
     for note in result.get("notices") or []:
         p.wrapped(f"note: {note}", "  ")
-    if not result.get("hidden"):
+    if not result.get("hidden") and not isinstance(result.get("practice"), dict):
         from simiam.course.weeks import hidden_variants
 
         n = result.get("hidden_checks_not_run", 0)
@@ -124,6 +124,29 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
         p.line(f"  all {_count(len(checks), 'check')} passed")
     p.line(p.paint(f"  total: {_points(result.get('score'), 'g')} / {_points(result.get('max_score'), 'g')}",
                    "bold"))
+    if isinstance(result.get("practice"), dict):
+        _print_practice(p, result["practice"], id_width)
+
+
+def _print_practice(p: Printer, practice: dict, id_width: int) -> None:
+    """`grade --practice`'s own section, after the total: the hidden checks run on the practice variants,
+    with no points, and the note that says they are not the graded ones."""
+    checks = [c for c in practice.get("checks") or [] if isinstance(c, dict)]
+    variants = practice.get("variants")
+    count = len(variants) if isinstance(variants, list) else 0
+    title = f"  practice (not graded): the hidden checks on {_count(count, 'practice variant')}"
+    p.line(p.paint(title, "bold"))
+    indent = " " * 10
+    for c in checks:
+        status = str(c.get("status", ""))
+        mark = _MARK.get(status, _one(status))
+        p.line(f"  {p.paint(f'{mark:7s}', mark)} {_one(c.get('id', '')):{id_width}s} practice")
+        if c.get("message"):  # passed too: it names the variants that ran
+            p.wrapped(c["message"], indent)
+    p.wrapped(practice.get("note", ""), "  ")
+    lost = sum(1 for c in checks if c.get("status") != "passed")
+    p.line(f"  practice: {len(checks) - lost} of {_count(len(checks), 'practice check')} passed "
+           "(not part of the total above)")
 
 
 def _one(value: object) -> str:
