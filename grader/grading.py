@@ -372,6 +372,7 @@ def _set_practice_apart(job: _Job, results: list[CheckResult]) -> list[CheckResu
     for r in results:
         if r.visibility != "visible":
             r.visibility = "practice"
+            r.name = r.name.replace("drawn per seed", "of the practice set")  # what ran, not the hidden draw
             record = r.to_json()
             del record["points"], record["max_points"]
             records.append(record)

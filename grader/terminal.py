@@ -122,10 +122,12 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
                    f"{_WORDS.get(str(c.get('status')), 'not passed')}")
     elif checks:
         p.line(f"  all {_count(len(checks), 'check')} passed")
-    p.line(p.paint(f"  total: {_points(result.get('score'), 'g')} / {_points(result.get('max_score'), 'g')}",
-                   "bold"))
-    if isinstance(result.get("practice"), dict):
-        _print_practice(p, result["practice"], id_width)
+    practice = result.get("practice")
+    if checks or not isinstance(practice, dict):  # --check of a hidden check with --practice grades nothing
+        p.line(p.paint(f"  total: {_points(result.get('score'), 'g')} / "
+                       f"{_points(result.get('max_score'), 'g')}", "bold"))
+    if isinstance(practice, dict):
+        _print_practice(p, practice, id_width)
 
 
 def _print_practice(p: Printer, practice: dict, id_width: int) -> None:
@@ -146,7 +148,7 @@ def _print_practice(p: Printer, practice: dict, id_width: int) -> None:
     p.wrapped(practice.get("note", ""), "  ")
     lost = sum(1 for c in checks if c.get("status") != "passed")
     p.line(f"  practice: {len(checks) - lost} of {_count(len(checks), 'practice check')} passed "
-           "(not part of the total above)")
+           "(never part of the total)")
 
 
 def _one(value: object) -> str:

@@ -33,6 +33,7 @@ from simiam.world import load_world
 OUT = PRACTICE_DIR / "week7.json"
 STREAM = "practice:week7"
 COUNT = 4
+SPREAD_FOR = 120
 GRID = [round(-1.125 + 0.15 * k, 3) for k in range(16)]  # half-way between hidden_week7.GRID's goals
 
 
@@ -79,14 +80,24 @@ def kept_everywhere(variant: dict, official: str, others: list[str]) -> bool:
     return all(s["fair"] and s["decided"] == first["decided"] for s in seen)
 
 
-def main() -> int:
+def main(argv: list[str] | None = None) -> int:
+    import argparse
+
+    parser = argparse.ArgumentParser(prog="python -m instructor_tools.practice_week7")
+    parser.add_argument("--resume", default="[]", metavar="JSON",
+                        help="variants an interrupted run kept (its log prints them), judged again never")
+    parser.add_argument("--skip", type=int, default=0, metavar="N",
+                        help="the candidates an interrupted run had judged: start after them")
+    args = parser.parse_args(argv)
     official, *others = kernels.runnable()
     pool = candidates()
-    kept: list[dict] = []
-    quarters: set[int] = set()
-    tried = 0
+    kept: list[dict] = json.loads(args.resume)
+    quarters = {turn_quarter(v["turn"], v["of"]) for v in kept}
+    if kept:
+        write(kept, [official, *others])
+    tried = args.skip
     batch = 24
-    for start in range(0, len(pool), batch):
+    for start in range(args.skip, len(pool), batch):
         if len(kept) >= COUNT:
             break
         part = pool[start:start + batch]
@@ -98,8 +109,9 @@ def main() -> int:
             tried += 1
             quarter = turn_quarter(v["turn"], v["of"])
             # while fewer quarters than wanted are kept, a kept quarter waits (the hidden draw's spread);
-            # past half the pool, any quarter will do
-            want_new = len(quarters) < min(COUNT, 4) and start < len(pool) // 2
+            # past SPREAD_FOR candidates any quarter will do (the hidden set's 43 face three quarters, one
+            # of them twice only: waiting for a rare quarter would cost hours)
+            want_new = len(quarters) < min(COUNT, 4) and start < SPREAD_FOR
             if not seen["fair"] or len(kept) >= COUNT or (want_new and quarter in quarters):
                 continue
             ok = kept_everywhere(v, official, others)
@@ -107,7 +119,14 @@ def main() -> int:
             if ok:
                 kept.append(v)
                 quarters.add(quarter)
-    names = [official, *others]
+                write(kept, [official, *others])  # each time: an interrupted run loses nothing kept
+    if len(kept) < COUNT:
+        print(f"only {len(kept)} of {COUNT} variants kept from {tried} candidates", flush=True)
+    return 0
+
+
+def write(kept: list[dict], names: list[str]) -> None:
+    """Write OUT: the kept variants, each with the reference's arrival from the declared start."""
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -129,8 +148,7 @@ def main() -> int:
     }
     OUT.parent.mkdir(parents=True, exist_ok=True)
     OUT.write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
-    print(f"{len(kept)} variants ({tried} candidates tried) written to {OUT}")
-    return 0
+    print(f"{len(kept)} variants written to {OUT}", flush=True)
 
 
 if __name__ == "__main__":

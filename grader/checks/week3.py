@@ -320,9 +320,10 @@ def overshoot(ctx: Context) -> Outcome:
 def _practice(ctx: Context, check: str) -> list[dict]:
     """The practice variants of one hidden check (grade --practice): goals off the grid every seed draws
     from, so never a hidden goal (grader.practice, instructor_tools/practice_sets.py)."""
-    from grader.practice import variants_to_run
+    from grader.practice import load_practice
 
-    return variants_to_run(ctx, 3, lambda data: [], keep=lambda v: v.get("check") == check) or []
+    data = load_practice(3) if ctx.practice else None
+    return [v for v in (data or {}).get("variants", []) if v.get("check") == check]
 
 
 def _not_here(ctx: Context) -> str:
