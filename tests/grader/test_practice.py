@@ -164,3 +164,26 @@ def test_the_reference_passes_every_practice_variant(week: int, check_id: str) -
     result = grade_submission(week, ROOT / "solutions" / f"week{week}", practice=True, only=check_id)
     (check,) = result["practice"]["checks"]
     assert check["status"] == "passed", check["message"]
+
+
+def test_remaking_a_practice_set_regrades_no_batch(tmp_path: Path, monkeypatch) -> None:
+    """A batch reuses a stored result while its grader fingerprint holds (grader.batch.cache): a new
+    practice set, which no official grade runs, keeps it; the code that picks a hidden check's variants
+    does not."""
+    import shutil
+
+    import grader
+    import simiam
+    from grader.batch.cache import grader_fingerprint
+
+    junk = shutil.ignore_patterns("__pycache__", "compiled")
+    for package in (grader, simiam):
+        shutil.copytree(Path(package.__file__).parent, tmp_path / package.__name__, ignore=junk)
+        monkeypatch.setattr(package, "__file__", str(tmp_path / package.__name__ / "__init__.py"))
+    before = grader_fingerprint()
+    data = tmp_path / "grader" / "practice" / "week4.json"
+    data.write_text(data.read_text().replace('"turn": 47', '"turn": 45'))
+    assert grader_fingerprint() == before
+    code = tmp_path / "grader" / "practice" / "__init__.py"
+    code.write_text(code.read_text() + "\n# changed\n")
+    assert grader_fingerprint() != before
