@@ -112,7 +112,7 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
         verb = "runs" if n == 1 else "run"
         p.wrapped(f"{_count(ran, 'visible check')} ran here"
                   + (f"; {_count(n, 'hidden check')} ({vary}, drawn per seed) {verb} at official grading"
-                     if n else ""), "  ")
+                     if n else "") + (_practice_hint(result.get("week")) if n else ""), "  ")
     lost = [c for c in checks if c.get("status") != "passed"]
     if lost:  # the end of the output is what a student sees first: what to fix, in the table's order
         p.line(f"  not passed ({len(lost)} of {len(checks)}):")
@@ -128,6 +128,15 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
                        f"{_points(result.get('max_score'), 'g')}", "bold"))
     if isinstance(practice, dict):
         _print_practice(p, practice, id_width)
+
+
+def _practice_hint(week: object) -> str:
+    """Where the week has a practice set: the command that tries variants like the hidden ones."""
+    from grader.practice import WEEKS_WITH_PRACTICE, load_practice
+
+    if type(week) is not int or week not in WEEKS_WITH_PRACTICE or load_practice(week) is None:
+        return ""
+    return f" (grade week{week} --practice tries practice variants drawn like them)"
 
 
 def _print_practice(p: Printer, practice: dict, id_width: int) -> None:

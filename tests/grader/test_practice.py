@@ -187,3 +187,18 @@ def test_remaking_a_practice_set_regrades_no_batch(tmp_path: Path, monkeypatch) 
     code = tmp_path / "grader" / "practice" / "__init__.py"
     code.write_text(code.read_text() + "\n# changed\n")
     assert grader_fingerprint() != before
+
+
+def test_a_plain_grading_says_where_practice_is() -> None:
+    import io
+
+    from grader.terminal import print_result
+
+    def said(week: int) -> str:
+        out = io.StringIO()
+        print_result({"week": week, "status": "graded", "hidden": False, "hidden_checks_not_run": 1,
+                      "visible_checks": 3, "checks": [], "score": 0, "max_score": 0}, out)
+        return " ".join(out.getvalue().split())
+
+    assert "(grade week4 --practice tries practice variants drawn like them)" in said(4)
+    assert "--practice" not in said(2)  # no practice set there
