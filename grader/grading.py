@@ -186,11 +186,16 @@ def grade_submission(
     lacks part of the sandbox, the isolation note says so, not "local check only" (capabilities).
     `practice` runs the hidden checks on the practice set shipped with the package (grader.practice)
     instead of the hidden set: their results go into `result["practice"]`, never into the checks, the
-    score or `hidden` (the result says which practice variants ran). Not with `hidden`.
+    score or `hidden` (the result says which practice variants ran). Not with `hidden`; ValueError for a
+    week without a practice set.
     """
     if practice and hidden:
         raise ValueError("--practice runs the practice variants in place of the hidden ones: not with "
                          "--hidden")
+    if practice:  # a week without a practice set would run its hidden checks' own draw under that name
+        from grader.practice import missing_practice_set
+
+        missing_practice_set([int(week)])
     week = int(week)
     submission = Path(submission)
     traces = {} if traces is None else traces

@@ -202,3 +202,12 @@ def test_a_plain_grading_says_where_practice_is() -> None:
 
     assert "(grade week4 --practice tries practice variants drawn like them)" in said(4)
     assert "--practice" not in said(2)  # no practice set there
+
+
+def test_the_engine_refuses_practice_where_there_is_none() -> None:
+    """Week 2's hidden check draws its angles from the seed: run "as practice" it would show the hidden
+    draw under the practice label."""
+    from grader.grading import grade_submission
+
+    with pytest.raises(ValueError, match="week 2 has no practice set"):
+        grade_submission(2, ROOT / "solutions" / "week2", practice=True)
