@@ -1,6 +1,6 @@
 """Make the week-7 practice set: variants drawn as the hidden ones are, vetted by their rules, never one.
 
-    python -m instructor_tools.practice_week7   # rewrites grader/practice/week7.json (~20-40 min, 2 cores)
+    python -m instructor_tools.practice_week7   # rewrites grader/practice/week7.json (about an hour, 2 cores)
 
 The hidden set (instructor_tools/hidden_week7.py) keeps every goal of a 0.15 m grid, in the world turned by
 k eighths of a turn, that passes its three rules; every other candidate of that grid failed one. So the
@@ -8,9 +8,11 @@ practice candidates lie on the same grid shifted by half a step (0.075 m): never
 the same box with the same exclusions. They are tried in an order of their own (random.Random(STREAM)),
 each judged by hidden_week7's own rules (hidden_week7.judge: the reference and the manual's progress rule
 reach it with the margins, the stub and the automaton that never follows a wall do not, from every nudged
-start; every kept week-7 version decided) under every BLAS kernel, until COUNT are kept in COUNT different
-start quarters where the candidates allow. Judging a variant under every kernel costs about five CPU-minutes,
-so the set is small; tests/grader/test_practice.py checks that none equals a hidden variant.
+start; every kept week-7 version decided) under every BLAS kernel, until COUNT are kept; over the first
+SPREAD_FOR candidates a start quarter already kept waits. Judging a candidate under every kernel takes
+minutes and most fail, so the set is small (docs/design.md, "Practice sets", says what a run cost);
+tests/grader/test_practice.py checks that none equals a hidden variant. Each kept variant is written at
+once; --skip N --resume JSON continue an interrupted run.
 """
 
 from __future__ import annotations
