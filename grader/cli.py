@@ -4,6 +4,7 @@
     grade week3 path/to/folder --seed 7 --out feedback/
     grade week2 --check week2.uni_to_diff.round_trip --case 'v=0.1,w=-2.0'   # replay one failing case
     grade week3 --solutions --hidden # the reference solutions, with the instructor's hidden checks
+    grade week4 --practice           # the hidden checks on the practice variants (not graded)
     grade all                        # every week
     grade week3 --batch submissions/ --jobs 4 --out graded/   # official: hidden checks, secret seed
     grade week3 path/to/alice --hidden --seed graded/          # one student with that batch's hidden set
@@ -13,7 +14,8 @@
                                          #      grade selfcheck
     grade similarity week3 submissions/ --out graded/   # pairs of students whose code blocks look alike
 
-Exit status: 0 every check passed, 1 some check did not, 2 the command itself could not run.
+Exit status: 0 every check passed, 1 some check did not (a practice check too, with --practice), 2 the
+command itself could not run.
 """
 
 from __future__ import annotations
@@ -63,6 +65,10 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--hidden", action="store_true",
                    help="also run the hidden checks (official grading; a --batch always does, unless "
                         "--visible-only)")
+    p.add_argument("--practice", action="store_true",
+                   help="also run the hidden checks on the practice variants shipped with the course (weeks "
+                        "3-7): drawn like the hidden ones but never them; shown apart, never part of the "
+                        "score")
     p.add_argument("--check", default=None, help="run only this check id, e.g. week3.pid.integral")
     p.add_argument("--case", default=None, help="with --check: replay one case, e.g. 'v=0.1,w=-2.0'")
     p.add_argument(
@@ -140,6 +146,13 @@ def _folder(args: argparse.Namespace, week: int, many: bool) -> Path:
     return week_folder(week, path, solutions=args.solutions)
 
 
+def practice_weeks() -> tuple[int, ...]:
+    """The weeks `--practice` runs a practice set for (`grade all --practice` grades the others plainly)."""
+    from grader.practice import WEEKS_WITH_PRACTICE, load_practice
+
+    return tuple(w for w in WEEKS_WITH_PRACTICE if load_practice(w) is not None)
+
+
 def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
     from grader.properties import parse_case
 
@@ -166,6 +179,7 @@ def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
         case=case,
         replay_prefix=f"grade week{week} {shown}",
         traces=traces,
+        practice=args.practice and week in practice_weeks(),
     )
     print_result(result)
     if case is not None:
@@ -182,7 +196,10 @@ def _grade_one(args: argparse.Namespace, week: int, many: bool) -> int:
         written = _written(lambda: safe_write.write_text(args.json_file, text)) and written
     if not written:
         return 2
-    return 0 if all_passed(result) else 1
+    practice = result.get("practice")
+    practised = not isinstance(practice, dict) or all(
+        c.get("status") == "passed" for c in practice.get("checks") or [] if isinstance(c, dict))
+    return 0 if all_passed(result) and practised else 1
 
 
 def _written(write: Callable[[], object]) -> bool:
@@ -219,6 +236,14 @@ def main(argv: list[str] | None = None) -> int:
                              "unless --hidden)")
         if args.case and not args.check:
             raise ValueError("--case needs --check ID (the check whose case you replay)")
+        if args.practice:
+            if args.hidden or args.batch:
+                raise ValueError("--practice is for one submission without --hidden: it runs the practice "
+                                 "variants in place of the hidden ones (official grading runs those)")
+            if len(weeks) == 1:
+                from grader.practice import missing_practice_set
+
+                missing_practice_set(weeks)
         if args.hidden or (args.batch and not args.visible_only):
             from grader.hidden import missing_hidden_set
 

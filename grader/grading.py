@@ -59,11 +59,13 @@ class _Job:
     began: float
     start_nudge: tuple[float, float] = (0.0, 0.0)
     official: bool = False
+    practice: bool = False
     budget: Any = None  # the grading's TimeBudget: the main session's, shared with any other it opens
 
 
 def select_checks(week: int, hidden: bool, only: str | None = None) -> tuple[list[Check], list[Check]]:
-    """(checks to run, hidden checks left out). `only` picks one check id (the CLI's --check)."""
+    """(checks to run, hidden checks left out). `only` picks one check id (the CLI's --check). A practice
+    grading asks with `hidden` True: its hidden checks run on the practice set."""
     checks = checks_for_week(week)
     if only is not None:
         picked = [c for c in checks if c.id == only]
@@ -172,6 +174,7 @@ def grade_submission(
     traces: dict[str, dict] | None = None,
     start_nudge: tuple[float, float] = (0.0, 0.0),
     official: bool = False,
+    practice: bool = False,
 ) -> dict:
     """Grade one submission folder for course week `week` and return the result JSON (see the module doc).
 
@@ -181,7 +184,18 @@ def grade_submission(
     the true start pose of every scenario run (Context.start_nudge; tests only, never a command line).
     `official` says this is a platform's official grading (grader.platforms.official): where that machine
     lacks part of the sandbox, the isolation note says so, not "local check only" (capabilities).
+    `practice` runs the hidden checks on the practice set shipped with the package (grader.practice)
+    instead of the hidden set: their results go into `result["practice"]`, never into the checks, the
+    score or `hidden` (the result says which practice variants ran). Not with `hidden`; ValueError for a
+    week without a practice set.
     """
+    if practice and hidden:
+        raise ValueError("--practice runs the practice variants in place of the hidden ones: not with "
+                         "--hidden")
+    if practice:  # a week without a practice set would run its hidden checks' own draw under that name
+        from grader.practice import missing_practice_set
+
+        missing_practice_set([int(week)])
     week = int(week)
     submission = Path(submission)
     traces = {} if traces is None else traces
@@ -191,7 +205,9 @@ def grade_submission(
         started = _start(week, submission, Path(tmp), limits, sandbox, official) \
             if submission.is_dir() else None
         try:
-            selected, left_out = select_checks(week, hidden, only)
+            selected, left_out = select_checks(week, hidden or practice, only)
+            if practice:  # its hidden checks run on the practice set: as hidden checks none of them ran
+                left_out = [c for c in checks_for_week(week) if c.visibility != "visible"]
             if out_dir is not None and started is not None:
                 _import_report()
             extra: dict[str, Any] = {
@@ -199,12 +215,15 @@ def grade_submission(
                 "hidden_checks_not_run": len(left_out),
                 "visible_checks": sum(c.visibility == "visible" for c in selected),
             }
+            if practice:  # filled by _set_practice_apart; an invalid submission keeps it empty
+                extra["practice"] = _practice_record(week, [])
             if started is None:
                 result = _invalid(week, seed, submission, selected, f"no such folder: {submission}", extra)
                 return _finish(result, traces, out_dir)
             try:
                 job = _Job(week, submission, seed, hidden, sandbox, case, limits, replay_prefix, selected,
-                           extra, traces, began, (float(start_nudge[0]), float(start_nudge[1])), official)
+                           extra, traces, began, (float(start_nudge[0]), float(start_nudge[1])), official,
+                           practice)
                 result = _grade(job, started)
             except CourseFilesMissing:
                 raise
@@ -303,11 +322,13 @@ def _grade(job: _Job, started: _Started) -> dict:
             hidden=job.hidden,
             case=job.case,
             traces=job.traces,
-            replay_prefix=prefix + (" --hidden" if job.hidden else "") + f" --seed {job.seed}",
+            replay_prefix=(prefix + (" --hidden" if job.hidden else "")
+                           + (" --practice" if job.practice else "") + f" --seed {job.seed}"),
             submission=str(job.submission),
             spliced=started.spliced,
             open_session=lambda folder: _open_session(job, folder, others),
             start_nudge=job.start_nudge,
+            practice=job.practice,
         )
         timing: dict[str, float] = {}
         ran: dict[str, CheckResult] = {}
@@ -324,6 +345,8 @@ def _grade(job: _Job, started: _Started) -> dict:
                 ran[check.id] = _run_timed(check, ctx, problems, timing, spoiled)
                 ran[check.id].printed = cut_middle(session.take_output(), HIDDEN_OUTPUT_CHARS)
         results = [ran[check.id] for check in job.selected]
+        if job.practice:
+            results = _set_practice_apart(job, results)
         job.extra["problems"] = problems
         job.extra["timing"] = {"total_seconds": round(time.monotonic() - job.began, 3), "checks": timing}
         job.extra["time_budget"] = session.budget.to_json()
@@ -344,6 +367,31 @@ def _grade(job: _Job, started: _Started) -> dict:
         message=loss_summary(results, problems),
         extra=job.extra,
     )
+
+
+def _set_practice_apart(job: _Job, results: list[CheckResult]) -> list[CheckResult]:
+    """The graded results; the practice ones (hidden checks run on the practice set) go into
+    `job.extra["practice"]` with no points, so nothing that sums a score can count them."""
+    graded = [r for r in results if r.visibility == "visible"]
+    records = []
+    for r in results:
+        if r.visibility != "visible":
+            r.visibility = "practice"
+            r.name = r.name.replace("drawn per seed", "of the practice set")  # what ran, not the hidden draw
+            record = r.to_json()
+            del record["points"], record["max_points"]
+            records.append(record)
+    job.extra["practice"] = _practice_record(job.week, records)
+    return graded
+
+
+def _practice_record(week: int, records: list[dict]) -> dict[str, Any]:
+    """`result["practice"]`: what practice is, which variants ran, the practice checks' records."""
+    from grader.practice import PRACTICE_NOTE, load_practice
+
+    data = load_practice(week) or {}
+    return {"note": PRACTICE_NOTE, "about": str(data.get("about", "")), "variants": data.get("variants", []),
+            "checks": records}
 
 
 def _load(session: StudentSession) -> dict:
@@ -372,6 +420,8 @@ def _run_timed(check: Check, ctx: Context, problems: dict[str, list[str]],
 def _invalid(
     week: int, seed: int, submission: Path, selected: list[Check], message: str, extra: dict[str, Any]
 ) -> dict:
+    if "practice" in extra:  # a practice grading: only the graded checks are listed (and scored 0)
+        selected = [c for c in selected if c.visibility == "visible"]
     results = [
         CheckResult(c.id, c.name, c.kind, c.visibility, c.weight, status="error", message=message)
         for c in selected

@@ -69,7 +69,8 @@ def package_version() -> str:
 _EXPECTED = Path(__file__).resolve().parent / "checks" / "expected"
 # The probes count with the registry: every module a registered probe is defined in (grader.inside.probes).
 _SCORING_MODULES = ("grader.reference", "grader.properties", "grader.scenarios", "grader.inside.probes",
-                    "grader.inside.probing", "grader.checks.answers", "grader.hidden", "grader.hidden.draw")
+                    "grader.inside.probing", "grader.checks.answers", "grader.hidden", "grader.hidden.draw",
+                    "grader.practice")  # grader.practice: which variants a hidden check runs
 
 
 def check_set_hash(checks: list) -> str:

@@ -103,7 +103,7 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
         p.wrapped(f"numerics: {numerics['note']}", "  ")
     for note in result.get("notices") or []:
         p.wrapped(f"note: {note}", "  ")
-    if not result.get("hidden"):
+    if not result.get("hidden") and not isinstance(result.get("practice"), dict):
         from simiam.course.weeks import hidden_variants
 
         n = result.get("hidden_checks_not_run", 0)
@@ -112,7 +112,7 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
         verb = "runs" if n == 1 else "run"
         p.wrapped(f"{_count(ran, 'visible check')} ran here"
                   + (f"; {_count(n, 'hidden check')} ({vary}, drawn per seed) {verb} at official grading"
-                     if n else ""), "  ")
+                     if n else "") + (_practice_hint(result.get("week")) if n else ""), "  ")
     lost = [c for c in checks if c.get("status") != "passed"]
     if lost:  # the end of the output is what a student sees first: what to fix, in the table's order
         p.line(f"  not passed ({len(lost)} of {len(checks)}):")
@@ -122,8 +122,42 @@ def print_result(result: dict, out: TextIO | None = None) -> None:
                    f"{_WORDS.get(str(c.get('status')), 'not passed')}")
     elif checks:
         p.line(f"  all {_count(len(checks), 'check')} passed")
-    p.line(p.paint(f"  total: {_points(result.get('score'), 'g')} / {_points(result.get('max_score'), 'g')}",
-                   "bold"))
+    practice = result.get("practice")
+    if checks or not isinstance(practice, dict):  # --check of a hidden check with --practice grades nothing
+        p.line(p.paint(f"  total: {_points(result.get('score'), 'g')} / "
+                       f"{_points(result.get('max_score'), 'g')}", "bold"))
+    if isinstance(practice, dict):
+        _print_practice(p, practice, id_width)
+
+
+def _practice_hint(week: object) -> str:
+    """Where the week has a practice set: the command that tries variants like the hidden ones."""
+    from grader.practice import WEEKS_WITH_PRACTICE, load_practice
+
+    if type(week) is not int or week not in WEEKS_WITH_PRACTICE or load_practice(week) is None:
+        return ""
+    return f" (grade week{week} --practice tries practice variants drawn like them)"
+
+
+def _print_practice(p: Printer, practice: dict, id_width: int) -> None:
+    """`grade --practice`'s own section, after the total: the hidden checks run on the practice variants,
+    with no points, and the note that says they are not the graded ones."""
+    checks = [c for c in practice.get("checks") or [] if isinstance(c, dict)]
+    variants = practice.get("variants")
+    count = len(variants) if isinstance(variants, list) else 0
+    title = f"  practice (not graded): the hidden checks on {_count(count, 'practice variant')}"
+    p.line(p.paint(title, "bold"))
+    indent = " " * 10
+    for c in checks:
+        status = str(c.get("status", ""))
+        mark = _MARK.get(status, _one(status))
+        p.line(f"  {p.paint(f'{mark:7s}', mark)} {_one(c.get('id', '')):{id_width}s} practice")
+        if c.get("message"):  # passed too: it names the variants that ran
+            p.wrapped(c["message"], indent)
+    p.wrapped(practice.get("note", ""), "  ")
+    lost = sum(1 for c in checks if c.get("status") != "passed")
+    p.line(f"  practice: {len(checks) - lost} of {_count(len(checks), 'practice check')} passed "
+           "(never part of the total)")
 
 
 def _one(value: object) -> str:

@@ -19,7 +19,8 @@ from grader.batch.stored import well_formed
 
 _SUFFIXES = {".py", ".j2", ".html", ".xml", ".json", ".css", ".js", ".txt"}
 # Batch plumbing does not change a grade, except task.py, which calls the grader and rewrites paths.
-_NOT_GRADING = ("grader/batch/",)
+# grader/practice/weekN.json: the practice sets, which no official grade runs (grade --practice only)
+_NOT_GRADING = ("grader/batch/", "grader/practice/week")
 _GRADING_TOO = ("grader/batch/task.py",)
 # Statuses worth keeping: a timeout or crash may be the machine's fault, so it is retried on a rerun.
 FINAL_STATUSES = ("graded", "invalid")

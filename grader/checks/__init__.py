@@ -56,6 +56,9 @@ class Context:
     # verdict hangs on the last bit (tests/grader/test_verdict_margins.py). Only the grading API sets it
     # (grade_submission's start_nudge); no command line, setting or submission reaches it.
     start_nudge: tuple[float, float] = (0.0, 0.0)
+    # `grade --practice`: the hidden checks run every variant of the practice set shipped with the package
+    # (grader.practice) instead of the seed's draw from the hidden set; their results are never scored
+    practice: bool = False
 
     @property
     def config(self) -> Week:

@@ -233,6 +233,11 @@ def reach_goals(hidden: bool):
             if hidden
             else [(_declared_goal(ctx), None), ((0.0, -1.0), None), (away[1], away[0])]
         )
+        if hidden and ctx.practice:
+            practice = _practice(ctx, "other_goals")
+            if not practice:
+                return Outcome(0.0, _not_here(ctx), status="error")
+            runs_to = [(_pair(v["goal"]), _pose(v["start"]) if "start" in v else None) for v in practice]
         reached, lines, runs, done, margins = 0, [], [], [], Margins()
         for goal, start in runs_to:
             r = _go(ctx, check_id, goal, start)
@@ -312,7 +317,32 @@ def overshoot(ctx: Context) -> Outcome:
     return Outcome(float(ok), text + ("" if ok else f". {OVERSHOOT_HINT}"), m)
 
 
+def _practice(ctx: Context, check: str) -> list[dict]:
+    """The practice variants of one hidden check (grade --practice): goals off the grid every seed draws
+    from, so never a hidden goal (grader.practice, instructor_tools/practice_sets.py)."""
+    from grader.practice import load_practice
+
+    data = load_practice(3) if ctx.practice else None
+    return [v for v in (data or {}).get("variants", []) if v.get("check") == check]
+
+
+def _not_here(ctx: Context) -> str:
+    from grader.practice import not_here
+
+    return not_here(ctx)
+
+
+def _pair(value: list) -> tuple[float, float]:
+    return float(value[0]), float(value[1])
+
+
+def _pose(value: list) -> tuple[float, float, float]:
+    return float(value[0]), float(value[1]), float(value[2])
+
+
 def tracking_other_goal(ctx: Context) -> Outcome:
+    if ctx.practice:
+        return _tracking_practice(ctx)
     goal = seeded_goals(ctx.seed, 1, "tracking", TRACKING_TURN, tracking_excluded())[0]
     r, m = _tracking(ctx, "week3.pid.tracking_other_goal", goal)
     if r.problem:
@@ -322,6 +352,32 @@ def tracking_other_goal(ctx: Context) -> Outcome:
     text = "never settled" if settle is None else f"settled after {settle:.2f} s"
     text = f"goal ({goal[0]:g}, {goal[1]:g}): {text}, overshoot {_percent(over)}"
     return Outcome(float(ok), text + ("" if ok else f". {TUNE_HINT}"), m)
+
+
+def _tracking_practice(ctx: Context) -> Outcome:
+    """tracking_other_goal on every practice goal: its share of them met both limits."""
+    goals = [_pair(v["goal"]) for v in _practice(ctx, "tracking_other_goal")]
+    if not goals:
+        return Outcome(0.0, _not_here(ctx), status="error")
+    good, lines, runs, done, margins = 0, [], [], [], Margins()
+    for goal in goals:
+        r, m = _tracking(ctx, "week3.pid.tracking_other_goal", goal)
+        done.append(r)
+        if r.problem:
+            lines.append(f"goal ({goal[0]:g}, {goal[1]:g}): {r.problem}")
+            continue
+        settle, over = m["settle_time"], m["overshoot"]
+        margins.add(SETTLE, settle, r.label)
+        margins.add(OVERSHOOT, over, r.label)
+        ok = settle is not None and settle <= SETTLE_LIMIT and over <= OVERSHOOT_LIMIT
+        good += ok
+        text = "never settled" if settle is None else f"settled after {settle:.2f} s"
+        lines.append(f"goal ({goal[0]:g}, {goal[1]:g}): {text}, overshoot {_percent(over)}")
+        runs.append({k: v for k, v in m.items() if k != "margins"})
+    text = "; ".join(lines) + ("" if good == len(goals) or any(r.problem for r in done) else f". {TUNE_HINT}")
+    return Outcome(good / len(goals), text,
+                   {"runs": runs, "traces": scenarios.trace_keys(done), "margins": margins.to_json()},
+                   status=scenarios.status_of(done))
 
 
 CHECKS = [

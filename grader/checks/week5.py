@@ -454,13 +454,12 @@ def switch_rate(ctx: Context) -> Outcome:
 
 def hidden_runs(mode: str):
     def run(ctx: Context) -> Outcome:
-        from grader.hidden import load_hidden
+        from grader.practice import not_here, variants_to_run
 
-        data = load_hidden(5)
-        if not data:
-            return Outcome(0.0, "the instructor's hidden set is not here (it runs at official grading)",
-                           status="error")
-        picks = hidden_picks(data, ctx.seed, mode)
+        picks = variants_to_run(ctx, 5, lambda data: hidden_picks(data, ctx.seed, mode),
+                                keep=lambda v: v["mode"] == mode)
+        if not picks:
+            return Outcome(0.0, not_here(ctx), status="error")
         check_id = f"week5.{mode}.hidden"
         good, lines, details, done, margins = 0, [], [], [], Margins()
         for v in picks:

@@ -4,6 +4,8 @@ The week's files are generated from solutions/ by the course's stub generator (t
 become placeholders, earlier weeks' blocks ship filled, as the course did), plus the week's README. Before
 anything is written the handout is checked: no file or block of a later week, no solution code of the
 week's own blocks anywhere in it (README included). A leak stops the command; nothing is written.
+The release also carries the week's practice set (grader/practice/weekN.json, as `practice_variants.json`):
+the variants `grade weekN --practice` runs, which the installed package holds too; never the hidden set.
 """
 
 from __future__ import annotations
@@ -91,6 +93,17 @@ def _reference_lines(week: int, own: set[str], course: Path) -> set[str]:
     return {ln for ln in reference - given if len(ln) >= _MIN_LEAK_CHARS and not ln.startswith("#")}
 
 
+PRACTICE_FILE = "practice_variants.json"
+
+
+def practice_file(week: int) -> dict[str, str]:
+    """{PRACTICE_FILE: text} of the week's practice set as this grader ships it, or {} without one."""
+    from grader.practice import PRACTICE_DIR
+
+    path = PRACTICE_DIR / f"week{int(week)}.json"
+    return {PRACTICE_FILE: path.read_text(encoding="utf-8")} if path.is_file() else {}
+
+
 def build_handout(week: int, out: Path, course: Path) -> tuple[Path, Path]:
     """Write `out`/weekN/ and `out`/weekN.zip (its files under weekN/); return both paths.
 
@@ -100,6 +113,7 @@ def build_handout(week: int, out: Path, course: Path) -> tuple[Path, Path]:
     problems = leaks(week, files, course)
     if problems:
         raise HandoutLeak(f"week {week}'s handout would leak: " + "; ".join(problems))
+    files.update(practice_file(week))
     folder, archive = out / f"week{week}", out / f"week{week}.zip"
     if folder.exists() or folder.is_symlink():  # a dangling link too: the folder is never moved onto one
         raise ValueError(f"{folder} already exists: remove it or choose another --out")

@@ -325,14 +325,32 @@ def render_report(result: dict, traces: dict[str, dict] | None = None, *, replay
     checks = sorted((c for c in result.get("checks") or [] if isinstance(c, dict)),
                     key=lambda c: c.get("status") == "passed")
     views = [_check_view(c, traces, replays, replay_hrefs or {}, shown, max_rows) for c in checks]
-    if any(run["srcdoc"] for view in views for run in view["runs"]):
+    practice = _practice_view(result.get("practice"), traces, replays, replay_hrefs or {}, shown, max_rows)
+    if any(run["srcdoc"] for view in views + (practice or {}).get("checks", []) for run in view["runs"]):
         from simiam.viewer.replay import content_security_policy
 
         csp = content_security_policy()  # the embedded replays inherit it: it must let their script run
     else:
         csp = STATIC_PAGE_CSP
     return _env().get_template("report.html.j2").render(summary=_summary(result, views), checks=views,
-                                                        csp=csp)
+                                                        practice=practice, csp=csp)
+
+
+def _practice_view(practice: object, traces: dict, replays: str, hrefs: dict[str, str], shown: set[str],
+                   max_rows: int) -> dict | None:
+    """`grade --practice`'s section: its note, the variants that ran, the practice checks (no points)."""
+    if not isinstance(practice, dict):
+        return None
+    checks = sorted((c for c in practice.get("checks") or [] if isinstance(c, dict)),
+                    key=lambda c: c.get("status") == "passed")
+    views = []
+    for c in checks:
+        view = _check_view(c, traces, replays, hrefs, shown, max_rows)
+        view["anchor"] = "practice-" + view["anchor"]
+        views.append(view)
+    variants = v if isinstance(v := practice.get("variants"), list) else []
+    return {"note": str(practice.get("note", "") or ""), "about": str(practice.get("about", "") or ""),
+            "variants": [json.dumps(v, sort_keys=True) for v in variants], "checks": views}
 
 
 def render_report_pages(result: dict, traces: dict[str, dict] | None, *, folder: str,

@@ -159,6 +159,17 @@ def test_run_and_migrate_work_in_a_course_folder(student: dict) -> None:
     assert "self.Kp = 3.25" in (course / "week4" / "go_to_goal.py").read_text()
 
 
+def test_practice_runs_from_the_installed_package(student: dict) -> None:
+    """`grade week3 --practice` finds the practice set in the installed package (no checkout): the hidden
+    tracking check runs on its practice goals, shown apart, and the stub fails them."""
+    course = _course(student, "practice")
+    done, result = _grade(student, course, "week3", "--practice", "--check", "week3.pid.tracking_other_goal")
+    (check,) = result["practice"]["checks"]
+    assert check["visibility"] == "practice" and check["status"] != "passed", done.stdout
+    assert "goal (-0.175, -0.845)" in check["message"] and result["checks"] == []
+    assert "practice (not graded)" in done.stdout and done.returncode == 1
+
+
 def test_instructor_tools_are_not_there_and_say_so(student: dict) -> None:
     home = student["home"]
     done = _run([student["bin"] / "grade", "week3", "--solutions"], home, student["env"])
@@ -214,6 +225,10 @@ def test_the_wheel_holds_no_answers(wheel: Path) -> None:
         assert not [n for n in names if "reference_brains" in n or "hidden/" in n and n.endswith(".json")]
         assert any(n.startswith("simiam/course/skeletons/week4/") for n in names)
         assert {"grader/reference.py", "grader/checks/expected/week2_odometry_course_test.json"} <= set(names)
+        # the practice sets ship (grade weekN --practice); the hidden sets they were kept apart from do not
+        assert {f"grader/practice/week{w}.json" for w in range(3, 8)} <= set(names)
+        hidden = {p.read_bytes() for p in (REPO / "instructor_tools" / "hidden").glob("week*.json")}
+        assert len(hidden) == 4 and not [n for n in names if z.read(n) in hidden]
         hits = search(((n, z.read(n).decode("utf-8", errors="replace")) for n in names), answers)
     assert hits == {}
 

@@ -23,6 +23,9 @@ def test_the_handout_is_the_weeks_stubs_and_readme_as_folder_and_zip(tmp_path: P
     stubs = {k.rsplit("/", 1)[1]: v for k, v in generate(ROOT / "solutions").files.items()
              if k.startswith(f"assignments/week{week}/")}
     expected = {**stubs, "README.md": (ROOT / "assignments" / f"week{week}" / "README.md").read_text()}
+    practice = ROOT / "grader" / "practice" / f"week{week}.json"  # grade weekN --practice's variants
+    if week >= 3:
+        expected[handout.PRACTICE_FILE] = practice.read_text()
     assert {p.name: p.read_text() for p in folder.iterdir()} == expected
     with zipfile.ZipFile(tmp_path / f"week{week}.zip") as archive:
         assert {n: archive.read(n).decode() for n in archive.namelist()} == \
@@ -30,6 +33,7 @@ def test_the_handout_is_the_weeks_stubs_and_readme_as_folder_and_zip(tmp_path: P
     solution = ROOT / "solutions" / f"week{week}"
     assert {p.name for p in folder.glob("*.py")} == {p.name for p in solution.glob("*.py")}
     assert leaks(week, expected, ROOT) == []
+    assert not [n for n in expected if "hidden" in n]  # the instructor's hidden set never ships
 
 
 def test_week3_has_no_week4_file_and_no_week3_answer(tmp_path: Path):
