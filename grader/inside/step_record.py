@@ -35,6 +35,7 @@ from simiam.signals import KINDS, declared
 STATE_BYTES = 320  # UTF-8 bytes of a state name in a record (4 per character of simiam.brain.STATE_CHARS)
 LABEL_BYTES = 320  # of a label signal (4 per character of simiam.signals.LABEL_CHARS); longer ones: JSON
 MAX_INT64 = 2**63 - 1
+_BITS = b"\x00\x01"  # what a presence or flag byte may be (bytes.translate deletes them: nothing may be left)
 # what an absent signal's slot holds (its presence byte says it is absent), by kind, for n columns
 _ZERO: dict[str, Callable[[int], Any]] = {
     "scalar": lambda n: 0.0, "vector2": lambda n: [0.0, 0.0], "points": lambda n: [[0.0] * n, [0.0] * n],
@@ -63,6 +64,13 @@ class StepLayout:
                                     f"{len(self._labels)}H")
         # where each group lands in the unpacked tuple: 0-5 the command, 6 the presence bytes, then the floats
         self._floats = 7
+        self._vectors_at = 7 + len(self._scalars)
+        self._vector_at = tuple((name, self._vectors_at + 2 * i) for i, name in enumerate(self._vectors))
+        points_at, at = [], self._vectors_at + 2 * len(self._vectors)
+        for name, n in self._points:
+            points_at.append((name, at, n))
+            at += 2 * n
+        self._points_at = tuple(points_at)
         self._counts_at = 7 + n_floats
         self._flags_at = self._counts_at + len(self._counts)
         self._labels_at = self._flags_at + 1
@@ -125,34 +133,38 @@ class StepLayout:
 
     def _debug_fields(self, debug: dict) -> list:
         """The debug values in the record's order (the floats, the counts, the flags' bytes) and, last,
-        the labels; TypeError or ValueError for a value not of its kind's canonical type."""
+        the labels; TypeError or ValueError for a value not of its kind's canonical type. Groups the
+        layout does not have cost nothing."""
         get = self._get
-        scalars = get["scalar"](debug)
-        vectors = get["vector2"](debug)
-        floats = list(scalars)
-        if vectors:
+        floats = list(get["scalar"](debug)) if self._scalars else []
+        if self._vectors:
+            vectors = get["vector2"](debug)
             if set(map(type, vectors)) != {list} or set(map(len, vectors)) != {2}:
                 raise TypeError
             floats += chain.from_iterable(vectors)
-        for rows, (_name, n) in zip(get["points"](debug), self._points, strict=True):
-            if type(rows) is not list or len(rows) != 2 or type(rows[0]) is not list \
-                    or type(rows[1]) is not list or len(rows[0]) != n or len(rows[1]) != n:
-                raise TypeError
-            floats += rows[0]
-            floats += rows[1]
+        if self._points:
+            for rows, (_name, n) in zip(get["points"](debug), self._points, strict=False):
+                if type(rows) is not list or len(rows) != 2 or type(rows[0]) is not list \
+                        or type(rows[1]) is not list or len(rows[0]) != n or len(rows[1]) != n:
+                    raise TypeError
+                floats += rows[0]
+                floats += rows[1]
         if floats and set(map(type, floats)) != {float}:
             raise TypeError
-        counts = get["count"](debug)
-        if counts and (set(map(type, counts)) != {int} or not -MAX_INT64 <= min(counts) <= max(counts)
-                       <= MAX_INT64):
-            raise ValueError
-        flags = get["flag"](debug)
+        if self._counts:
+            counts = get["count"](debug)
+            if set(map(type, counts)) != {int} or not -MAX_INT64 <= min(counts) <= max(counts) <= MAX_INT64:
+                raise ValueError
+            floats += counts
+        flags = get["flag"](debug) if self._flags else ()
         if flags and set(map(type, flags)) != {bool}:
             raise TypeError
-        labels = get["label"](debug)
+        floats.append(bytes(flags))
+        labels = get["label"](debug) if self._labels else ()
         if labels and set(map(type, labels)) != {str}:
             raise TypeError
-        return [*floats, *counts, bytes(flags), labels]
+        floats.append(labels)
+        return floats
 
     def decode_answer(self, payload: bytes) -> dict:
         """The answer dict JSON would give, from a record of the (untrusted) worker; ProtocolError for any
@@ -163,35 +175,43 @@ class StepLayout:
             raise ProtocolError(f"a step record of {size} bytes, where this run's layout takes "
                                 f"{fixed} to {self.max_answer}")
         raw = self.answer.unpack_from(payload)
-        state_len, presence, flags = raw[5], raw[6], raw[self._flags_at]
-        lengths = raw[self._labels_at:]
-        if presence.translate(None, b"\x00\x01") or flags.translate(None, b"\x00\x01"):
+        state_len, presence = raw[5], raw[6]
+        if presence.translate(None, _BITS) or self._flags and raw[self._flags_at].translate(None, _BITS):
             raise ProtocolError("a presence or flag byte other than 0 or 1 in a step record")
-        if state_len > STATE_BYTES or lengths and max(lengths) > LABEL_BYTES:
+        if state_len > STATE_BYTES:
             raise ProtocolError("a string in a step record longer than its cap")
-        if any(length and not presence[at] for length, at in zip(lengths, self._label_presence, strict=True)):
-            raise ProtocolError("a length for an absent label in a step record")
-        if fixed + state_len + sum(lengths) != size:
-            raise ProtocolError(f"a step record of {size} bytes whose fields take "
-                                f"{fixed + state_len + sum(lengths)}")
+        taken = fixed + state_len
+        if self._labels:
+            lengths = raw[self._labels_at:]
+            if max(lengths) > LABEL_BYTES:
+                raise ProtocolError("a string in a step record longer than its cap")
+            for length, at in zip(lengths, self._label_presence, strict=False):
+                if length and not presence[at]:
+                    raise ProtocolError("a length for an absent label in a step record")
+            taken += sum(lengths)
+        if taken != size:
+            raise ProtocolError(f"a step record of {size} bytes whose fields take {taken}")
         # the frame is whole and well-formed: now its values
-        at = self._floats + len(self._scalars)
-        debug: dict[str, Any] = dict(zip(self._scalars, raw[self._floats:at], strict=True))
-        pairs = iter(raw[at:at + 2 * len(self._vectors)])
-        debug.update(zip(self._vectors, map(list, zip(pairs, pairs, strict=True)), strict=True))
-        at += 2 * len(self._vectors)
-        for name, n in self._points:
-            debug[name] = [list(raw[at:at + n]), list(raw[at + n:at + 2 * n])]
-            at += 2 * n
-        debug.update(zip(self._counts, raw[self._counts_at:self._flags_at], strict=True))
-        debug.update(zip(self._flags, map(bool, flags), strict=True))
-        view, end = memoryview(payload), fixed + state_len
-        state = _text(view[fixed:end])
-        for name, length in zip(self._labels, lengths, strict=True):
-            debug[name] = _text(view[end:end + length])
-            end += length
+        try:
+            state = str(payload[fixed:fixed + state_len], "utf-8")
+            debug: dict[str, Any] = dict(zip(self._scalars, raw[self._floats:self._vectors_at], strict=False))
+            for name, at in self._vector_at:
+                debug[name] = [raw[at], raw[at + 1]]
+            for name, at, n in self._points_at:
+                debug[name] = [list(raw[at:at + n]), list(raw[at + n:at + 2 * n])]
+            if self._counts:
+                debug.update(zip(self._counts, raw[self._counts_at:self._flags_at], strict=False))
+            if self._flags:
+                debug.update(zip(self._flags, map(bool, raw[self._flags_at]), strict=False))
+            if self._labels:
+                end = fixed + state_len
+                for name, length in zip(self._labels, raw[self._labels_at:], strict=False):
+                    debug[name] = str(payload[end:end + length], "utf-8")
+                    end += length
+        except UnicodeDecodeError:
+            raise ProtocolError("a string in a step record that is not UTF-8") from None
         if presence != self._all_present:
-            for name, present in zip(self.names, presence, strict=True):
+            for name, present in zip(self.names, presence, strict=False):
                 if not present:
                     debug[name] = None
         return {"vel_r": raw[0], "vel_l": raw[1], "estimate": [raw[2], raw[3], raw[4]], "state": state,
@@ -206,13 +226,6 @@ def _getter(names: tuple[str, ...]) -> Callable[[dict], tuple]:
         name = names[0]
         return lambda debug: (debug[name],)
     return itemgetter(*names)
-
-
-def _text(data: memoryview) -> str:
-    try:
-        return str(data, "utf-8")
-    except UnicodeDecodeError:
-        raise ProtocolError("a string in a step record that is not UTF-8") from None
 
 
 _LAYOUTS: dict[tuple, StepLayout] = {}

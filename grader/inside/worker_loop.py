@@ -21,6 +21,7 @@ from typing import Any
 
 from grader.inside.answer_bounds import MAX_ANSWER_BYTES, OutOfBounds, weigh
 from grader.inside.protocol import (
+    HEADER,
     REQUEST,
     FrameReader,
     NotJSON,
@@ -246,11 +247,16 @@ def serve(config: dict) -> None:
             data = os.read(fd_in, 65536)
             if not data:
                 return
-            try:
-                reader.feed(data)
-            except ProtocolError:
-                return
-            continue
+            if data[0] == REQUEST and len(data) > HEADER.size and not reader.pending:
+                kind, rid, size = HEADER.unpack_from(data)
+                if len(data) == HEADER.size + size:  # a step's record, whole in one read: no buffering
+                    line = Record(kind, rid, data[HEADER.size:])
+            if line is None:
+                try:
+                    reader.feed(data)
+                except ProtocolError:
+                    return
+                continue
         if isinstance(line, Record):  # a scenario step: one record in, one out (or JSON)
             try:
                 data = worker.step(line)
