@@ -7,10 +7,11 @@ grader.inside.protocol (kind, request id, payload length); its payload is one `s
 then the UTF-8 bytes of the strings whose lengths that struct holds:
 
 - readings: t, dt (double), ticks (2 int64), ir_raw (n_ir int64);
-- answer: vel_r, vel_l, estimate x, y, theta (double), the state's byte length (uint16), then per signal
-  a presence byte (0: None, 1: a value) and its slot: scalar a double, vector2 two, points 2 x columns,
-  label its byte length (uint16), count an int64, flag a byte (0 or 1); then the state's and the labels'
-  bytes.
+- answer: vel_r, vel_l, estimate x, y, theta (double), the state's byte length (uint16), one presence
+  byte per signal in the declared order (0: None, 1: a value), then the values grouped by kind, each
+  group in the declared order: the doubles of the scalars, the vector2s (two each) and the points (2 x
+  columns each), the counts (int64), one byte per flag (0 or 1), the labels' byte lengths (uint16);
+  then the state's and the labels' bytes. An absent signal's slot holds zeros.
 
 An answer whose values are not already of their canonical type (a numpy float, an int speed, NaN in a
 string's place, a string longer than its cap, anything else) is not a record: the worker sends it as JSON,
