@@ -321,19 +321,31 @@ _READ: dict[str, Callable[[Any, int], Any]] = {
 _MISSING = object()
 
 
-def read_signals(supervisor: Any, signals: tuple[Signal, ...], n_ir: int) -> dict[str, Any]:
+ReadPlan = tuple[tuple[str, bool, str, int | str | None, Callable[[Any, int], Any], int], ...]
+
+
+def read_plan(signals: tuple[Signal, ...], n_ir: int) -> ReadPlan:
+    """(name, from the controller?, attribute, index, reader, columns) per signal: what `read_signals`
+    does, worked out once per run."""
+    return tuple((s.name, s.owner == "controller", s.attr, s.index, _READ[s.kind], s.columns(n_ir))
+                 for s in signals)
+
+
+def read_signals(supervisor: Any, signals: tuple[Signal, ...], n_ir: int, plan: ReadPlan | None = None
+                 ) -> dict[str, Any]:
     """Each signal read from the supervisor or its current controller as a plain value, or None when the
-    attribute is missing or holds something else. Never raises for what the objects hold."""
-    owners = {"supervisor": supervisor, "controller": getattr(supervisor, "current_controller", None)}
+    attribute is missing or holds something else. Never raises for what the objects hold. `plan` (from
+    `read_plan(signals, n_ir)`) saves working that out every step."""
+    controller = getattr(supervisor, "current_controller", None)
     out = {}
-    for s in signals:
-        value = getattr(owners[s.owner], s.attr, None)
-        if s.index is not None and value is not None:
+    for name, of_controller, attr, index, reader, n in plan or read_plan(signals, n_ir):
+        value = getattr(controller if of_controller else supervisor, attr, None)
+        if index is not None and value is not None:
             try:
-                value = value[s.index]
+                value = value[index]
             except Exception:  # noqa: BLE001 - a student's object may raise anything when indexed
                 value = None
-        out[s.name] = _READ[s.kind](value, s.columns(n_ir))
+        out[name] = reader(value, n)
     return out
 
 

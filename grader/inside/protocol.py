@@ -1,4 +1,5 @@
-"""Framing of the grader <-> worker messages: one JSON object per line, on a private pipe pair.
+"""Framing of the grader <-> worker messages: one JSON object per line, on a private pipe pair, and, for a
+scenario's steps only, binary records (grader.inside.step_record) framed by HEADER.
 
 Both directions use the same framing. The grader side is strict because the worker is untrusted after
 student code has run: a message larger than the cap, a NaN/Infinity token, a duplicate key, or anything
@@ -12,7 +13,8 @@ from __future__ import annotations
 import json
 import math
 import re
-from typing import Any
+import struct
+from typing import Any, NamedTuple
 
 from grader.inside.answer_bounds import too_large
 from grader.inside.caps import clean
@@ -21,6 +23,12 @@ MAX_MESSAGE = 4 * 1024 * 1024  # bytes per message (a 30 s scenario step command
 _FLOAT_TAG = "$float"
 _NONFINITE = {"nan": math.nan, "inf": math.inf, "-inf": -math.inf}
 _SURROGATE_ESCAPE = re.compile(rb"\\u[dD][89a-fA-F]")
+# A binary record's frame (grader.inside.step_record): kind byte, request id, payload bytes. The kind bytes
+# are control characters, which no JSON line begins with.
+HEADER = struct.Struct("<BII")
+REQUEST = 1  # a scenario step's readings (grader -> worker)
+ANSWER = 2   # the brain's answer to them (worker -> grader)
+_KINDS = (REQUEST, ANSWER)
 
 
 class ProtocolError(Exception):
@@ -98,26 +106,59 @@ def decode(line: bytes) -> dict:
     return clean(value) if _SURROGATE_ESCAPE.search(line) else value
 
 
-class LineReader:
-    """Accumulates bytes from a pipe and yields complete lines, refusing any line above the cap."""
+class Record(NamedTuple):
+    """A binary record (grader.inside.step_record) as framed on the pipe: its kind, request id, payload."""
+
+    kind: int
+    rid: int
+    payload: bytes
+
+
+class FrameReader:
+    """Accumulates bytes from a pipe and yields whole frames: JSON lines, and binary records (a HEADER of
+    kind REQUEST or ANSWER, which no JSON line starts with, then its payload). A line or record above
+    the cap is refused as soon as its size is known, before it is buffered whole."""
 
     def __init__(self, cap: int = MAX_MESSAGE) -> None:
         self.cap = cap
         self._buf = bytearray()
 
     def feed(self, data: bytes) -> None:
-        self._buf += data
-        if len(self._buf) > self.cap and b"\n" not in self._buf[: self.cap + 1]:
+        buf = self._buf
+        buf += data
+        if buf and buf[0] in _KINDS:
+            if len(buf) >= HEADER.size and HEADER.unpack_from(buf)[2] > self.cap:
+                raise ProtocolError(f"a record of {HEADER.unpack_from(buf)[2]} bytes exceeds the "
+                                    f"{self.cap} byte cap")
+        elif len(buf) > self.cap and b"\n" not in buf[: self.cap + 1]:
             raise ProtocolError(f"message exceeds the {self.cap} byte cap")
 
-    def pop_line(self) -> bytes | None:
-        """The next complete line (without the newline), or None if none is complete yet."""
-        end = self._buf.find(b"\n")
-        if end < 0:
+    def pop(self) -> bytes | Record | None:
+        """The next whole frame: a line (bytes, without its newline) or a Record; None if none is whole
+        yet. What follows a frame is checked against the cap too (`feed`'s rule)."""
+        buf = self._buf
+        if not buf:
             return None
-        line = bytes(self._buf[:end])
-        del self._buf[: end + 1]
-        return line
+        if buf[0] in _KINDS:
+            if len(buf) < HEADER.size:
+                return None
+            kind, rid, size = HEADER.unpack_from(buf)
+            if size > self.cap:
+                raise ProtocolError(f"a record of {size} bytes exceeds the {self.cap} byte cap")
+            end = HEADER.size + size
+            if len(buf) < end:
+                return None
+            frame = Record(kind, rid, bytes(buf[HEADER.size:end]))
+        else:
+            end = buf.find(b"\n")
+            if end < 0:
+                return None
+            frame = bytes(buf[:end])  # type: ignore[assignment]
+            end += 1
+        del buf[:end]
+        if buf:
+            self.feed(b"")
+        return frame
 
     @property
     def pending(self) -> int:

@@ -15,12 +15,23 @@ import signal
 import sys
 import threading
 import traceback
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
 from grader.inside.answer_bounds import MAX_ANSWER_BYTES, OutOfBounds, weigh
-from grader.inside.protocol import LineReader, NotJSON, ProtocolError, decode_request, encode, to_json
+from grader.inside.protocol import (
+    HEADER,
+    REQUEST,
+    FrameReader,
+    NotJSON,
+    ProtocolError,
+    Record,
+    decode_request,
+    encode,
+    to_json,
+)
+from grader.inside.step_record import StepLayout, layout_for
 
 
 class _Worker:
@@ -32,6 +43,7 @@ class _Worker:
         self.allowed = _probe_names(self.probes)
         self.sub: Any = None
         self.brain: Any = None  # the trusted framework was imported by the bootstrap (worker.py)
+        self.layout: StepLayout | None = None  # the step records of the brain's run, when agreed
 
     def submission(self) -> Any:
         if self.sub is None:
@@ -63,11 +75,12 @@ class _Worker:
         from simiam.control.local_brain import LocalBrain
         from simiam.course.weeks import get_week
 
-        self.brain = None
+        self.brain = self.layout = None
         _join_core(request.get("cpu"))
         self.brain = LocalBrain(self.submission(), get_week(self.week), request.get("settings") or None,
                                 start=_pose(request.get("start")))
-        return None
+        self.layout = _agreed(request.get("record"), self.brain)
+        return None if self.layout is None else {"record": True}
 
     def op_brain_step(self, request: dict) -> Any:
         if self.brain is None:
@@ -91,14 +104,39 @@ class _Worker:
             yield self.handle({"name": fields.get("name"), "args": fields.get("args"), "op": "probe",
                                "id": rid + offset})
 
+    def step(self, record: Record) -> bytes:
+        """A step's readings record, answered: a step record, or JSON where the answer is not of the
+        record's canonical types or the student's code raised (grader.inside.step_record)."""
+        layout = self.layout
+        if record.kind != REQUEST or layout is None or self.brain is None:
+            raise ProtocolError("a step record before brain_start agreed on records")
+        readings = layout.decode_readings(record.payload)
+        try:
+            answer = self.brain.step(readings)
+        except BaseException as exc:  # noqa: BLE001 - as handle()
+            return _encoded({"id": record.rid, "ok": False, "error": self.describe(exc)})
+        frame = layout.encode_answer(record.rid, answer)
+        if frame is not None:
+            return frame
+        response = self.respond(record.rid, lambda: answer)  # exactly as before records
+        try:
+            return _encoded(response)
+        except (ValueError, TypeError):
+            return _encoded({"id": record.rid, "ok": False,
+                             "error": {"type": "NotJSON", "message": "the answer could not be encoded"}})
+
     def handle(self, request: dict) -> dict:
         rid = request.get("id")
         op = getattr(self, f"op_{request.get('op')}", None)
         if op is None:
             return {"id": rid, "ok": False, "error": {"type": "ProtocolError",
                                                      "message": f"unknown op {request.get('op')!r}"}}
+        return self.respond(rid, lambda: op(request))
+
+    def respond(self, rid: Any, compute: Callable[[], Any]) -> dict:
+        """The response carrying what `compute()` returns as JSON, or the error it raised, in words."""
         try:
-            value = to_json(op(request))
+            value = to_json(compute())
             weigh(value)  # the grader takes nothing larger: say so here, in words, rather than be killed
         except NotJSON as exc:
             return {"id": rid, "ok": False, "error": {"type": "NotJSON", "message": str(exc)}}
@@ -125,6 +163,17 @@ class _Worker:
             message = f"your code called sys.exit({message})"
         return {"type": type(exc).__name__[:100], "message": message[:1000], "file": file, "line": line,
                 "frames": frames[-20:]}
+
+
+def _agreed(record: object, brain: Any) -> StepLayout | None:
+    """The step records the grader proposed in brain_start, if they are exactly this brain's signals and
+    IR count (else the run's steps stay JSON)."""
+    if not isinstance(record, dict):
+        return None
+    names, n_ir = record.get("signals"), record.get("n_ir")
+    if names != [s.name for s in brain.signals] or type(n_ir) is not int or n_ir != brain._n_ir:
+        return None
+    return layout_for(names, n_ir)
 
 
 def _pose(value: object) -> tuple[float, float, float] | None:
@@ -188,14 +237,33 @@ def serve(config: dict) -> None:
                                                   "seccomp": bool(config.get("seccomp")),
                                                   "refused_limits": config.get("refused_limits", []),
                                                   "numerics": config.get("numerics")}})
-    reader = LineReader()
+    reader = FrameReader()
     while True:
-        line = reader.pop_line()
+        try:
+            line = reader.pop()
+        except ProtocolError:
+            return
         if line is None:
             data = os.read(fd_in, 65536)
             if not data:
                 return
-            reader.feed(data)
+            if data[0] == REQUEST and len(data) > HEADER.size and not reader.pending:
+                kind, rid, size = HEADER.unpack_from(data)
+                if len(data) == HEADER.size + size:  # a step's record, whole in one read: no buffering
+                    line = Record(kind, rid, data[HEADER.size:])
+            if line is None:
+                try:
+                    reader.feed(data)
+                except ProtocolError:
+                    return
+                continue
+        if isinstance(line, Record):  # a scenario step: one record in, one out (or JSON)
+            try:
+                data = worker.step(line)
+            except ProtocolError:
+                return
+            _flush_student_output()
+            _write_all(fd_out, data)
             continue
         try:
             request = decode_request(line)
@@ -220,11 +288,21 @@ def _flush_student_output() -> None:
 
 
 def _send(fd: int, message: dict) -> None:
+    _write_all(fd, _encoded(message))
+
+
+def _encoded(message: dict) -> bytes:
+    """`message` as a JSON line, or a TooLarge error in its place; ValueError or TypeError if it has no
+    JSON form."""
     data = encode(message)
     if len(data) > MAX_ANSWER_BYTES:  # within the bounds of values and text, but long numbers or escapes
         too_large = f"a value of {len(data)} bytes as JSON (at most {MAX_ANSWER_BYTES})"
         data = encode({"id": message.get("id"), "ok": False,
                        "error": {"type": "TooLarge", "message": too_large}})
+    return data
+
+
+def _write_all(fd: int, data: bytes) -> None:
     while data:
         written = os.write(fd, data)
         data = data[written:]

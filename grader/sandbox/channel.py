@@ -32,7 +32,7 @@ import threading
 import time
 
 from grader.inside.answer_bounds import MAX_ANSWER_BYTES
-from grader.inside.protocol import LineReader
+from grader.inside.protocol import FrameReader
 from grader.sandbox import winjob
 from grader.sandbox.isolation import WorkerPlan
 from grader.sandbox.output import CappedOutput
@@ -79,7 +79,7 @@ class PortableWorker(WorkerProcess):
         # Windows: a job holds the worker and all it starts, orphans included (winjob; else taskkill)
         self._job = winjob.contain(self.proc) if os.name == "nt" else None
         self.output = CappedOutput(out_r, output_cap)
-        self._reader = LineReader(MAX_ANSWER_BYTES)
+        self._reader = FrameReader(MAX_ANSWER_BYTES)
         self._writer: _Writer | None = None
         if hasattr(select, "poll") and hasattr(os, "set_blocking"):
             # POSIX: the runner's own poll() and non-blocking writes on these pipes; no thread hand-off

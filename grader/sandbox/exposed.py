@@ -67,6 +67,7 @@ EXPOSED: tuple[str, ...] = (
     "grader/inside/rlimits.py",
     "grader/inside/seccomp.py",
     "grader/inside/shorten.py",
+    "grader/inside/step_record.py",
     "grader/inside/worker.py",
     "grader/inside/worker_loop.py",
 )

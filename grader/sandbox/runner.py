@@ -27,9 +27,20 @@ import subprocess
 import sys
 import time
 from collections.abc import Callable
+from typing import NoReturn
 
 from grader.inside.answer_bounds import MAX_ANSWER_BYTES, OutOfBounds, check_message
-from grader.inside.protocol import MAX_MESSAGE, LineReader, ProtocolError, decode, encode_request
+from grader.inside.protocol import (
+    ANSWER,
+    HEADER,
+    MAX_MESSAGE,
+    FrameReader,
+    ProtocolError,
+    Record,
+    decode,
+    encode_request,
+)
+from grader.inside.step_record import StepLayout
 from grader.sandbox.errors import MachineStalled, StudentTimeout, WorkerDied
 from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
 from grader.sandbox.leftovers import remove_files_of, remove_ipc_of
@@ -83,7 +94,7 @@ class WorkerProcess:
             for fd in (req_r, resp_w, out_w, dump_w):
                 os.close(fd)
         self.output = CappedOutput(out_r, output_cap)
-        self._reader = LineReader(MAX_ANSWER_BYTES)  # answers are smaller than requests may be
+        self._reader = FrameReader(MAX_ANSWER_BYTES)  # answers are smaller than requests may be
         self._answers = select.poll()  # kept: one poll object for every answer, not one per wait
         self._answers.register(self._resp_r, select.POLLIN)
         self._next_id = 1
@@ -135,6 +146,40 @@ class WorkerProcess:
             raise WorkerDied(self.dead)
         return self._receive(rid, self._clock(self.host_pid, timeout), op)
 
+    def step(self, layout: StepLayout, readings: dict, timeout: float) -> dict:
+        """One scenario step: the readings as a record (grader.inside.step_record), the answer decoded
+        from its record (or JSON: the worker's fallback, or the student's error), within `timeout` as
+        `receive`. The common case is one write, one poll and one read, the answer whole in that read."""
+        if self.dead:
+            raise WorkerDied(self.dead)
+        rid = self._next_id
+        frame = layout.encode_readings(rid, readings)
+        if frame is None:  # readings the layout cannot hold: the JSON request, answered in JSON
+            return self.request("brain_step", {"readings": readings}, timeout)
+        self._next_id = rid + 1
+        try:
+            self._write(frame)
+        except OSError:
+            self._die("it stopped reading requests")
+        clock = self._clock(self.host_pid, timeout)
+        if self._resp_r >= 0 and not self._reader.pending and \
+                self._answers.poll(int(clock.next_wait() * 1000) + 1):
+            data = os.read(self._resp_r, 1 << 16)
+            if len(data) > HEADER.size and data[0] == ANSWER:
+                _, got, size = HEADER.unpack_from(data)
+                if got == rid and len(data) == HEADER.size + size:
+                    try:
+                        return {"id": rid, "ok": True, "value": layout.decode_answer(data[HEADER.size:])}
+                    except ProtocolError as exc:
+                        self._die(f"it broke the protocol ({exc})")
+            if not data:
+                self._die(self._exit_reason())
+            try:
+                self._reader.feed(data)
+            except ProtocolError as exc:
+                self._die(f"it broke the protocol ({exc})")
+        return self._receive(rid, clock, "brain_step", layout)
+
     def _clock(self, pid: int | None, timeout: float) -> CallClock:
         self.last_clock = CallClock(pid, timeout, self.stall_seconds)
         return self.last_clock
@@ -157,12 +202,22 @@ class WorkerProcess:
                 if not _wait(self._req_w, select.POLLOUT, 5.0):
                     self._die("it stopped reading requests")
 
-    def _receive(self, rid: int, clock: CallClock, op: str) -> dict:
+    def _receive(self, rid: int, clock: CallClock, op: str, layout: StepLayout | None = None) -> dict:
+        """The answer `rid`: a JSON line, or a step record where `layout` says one was asked for."""
         while True:
             try:
-                line = self._reader.pop_line()
+                line = self._reader.pop()
             except ProtocolError as exc:
                 self._die(f"it broke the protocol ({exc})")
+            if isinstance(line, Record):
+                if layout is None or line.kind != ANSWER:
+                    self._die("it broke the protocol (a step record nobody asked for)")
+                if line.rid != rid:
+                    self._die("it sent an answer that does not match the question")
+                try:
+                    return {"id": rid, "ok": True, "value": layout.decode_answer(line.payload)}
+                except ProtocolError as exc:
+                    self._die(f"it broke the protocol ({exc})")
             if line is not None:
                 try:
                     message = decode(line)
@@ -241,7 +296,7 @@ class WorkerProcess:
             return self.proc.pid
         return find_descendant(self.proc.pid, inner)
 
-    def _die(self, reason: str) -> None:
+    def _die(self, reason: str) -> NoReturn:
         self.kill()
         self.dead = reason
         raise WorkerDied(reason)

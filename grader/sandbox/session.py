@@ -37,6 +37,7 @@ from grader.inside.caps import (
     TYPE_CHARS,
     clip,
 )
+from grader.inside.step_record import StepLayout, layout_for
 from grader.sandbox import isolation
 from grader.sandbox.capabilities import has_module, with_refused_limits
 from grader.sandbox.channel import PortableWorker
@@ -82,6 +83,7 @@ class StudentSession:
         # the grading's time, shared with every session it opens (limits.total_seconds of own time)
         self.budget = budget or TimeBudget(self.limits.total_seconds, self.limits.total_wall_seconds)
         self._meter: CpuMeter | None = None  # the CPU time of the current worker
+        self._records: WorkerProcess | None = None  # the worker whose brain agreed on step records
         self.calls = 0
         self.starts = 0
         self.start_seconds: list[float] = []
@@ -115,6 +117,26 @@ class StudentSession:
             return self.load()
         self._ensure_worker()
         return self._request(op, fields, timeout)
+
+    def start_brain(self, **fields: Any) -> StepLayout | None:
+        """`call("brain_start", **fields)`, proposing step records (grader.inside.step_record) for the
+        run: their layout if the worker's brain agreed (its signals and IR count are the week's), else
+        None (the run's steps are JSON)."""
+        layout = _week_layout(self.week)
+        if layout is None:
+            self.call("brain_start", **fields)
+            return None
+        value = self.call("brain_start", record=layout.to_json(), **fields)
+        self._records = self._worker if value == {"record": True} else None
+        return layout if self._records is not None else None
+
+    def brain_step(self, readings: Any, timeout: float | None, layout: StepLayout | None) -> Any:
+        """`call("brain_step", readings=readings)`, as step records when `layout` is what `start_brain`
+        agreed with this same worker (after a restart, the JSON call says what it always said)."""
+        worker = self._worker
+        if layout is None or worker is None or worker is not self._records or worker.dead is not None:
+            return self.call("brain_step", timeout=timeout, readings=readings)
+        return self._request("brain_step", readings, timeout, layout)
 
     def probe_many(self, probes: list[dict], timeout: float | None = None,
                    budget: AnswerBudget | None = None) -> list[Any]:
@@ -252,7 +274,9 @@ class StudentSession:
         self.starts += 1
         self._spawned = began
 
-    def _request(self, op: str, fields: dict, timeout: float | None) -> Any:
+    def _request(self, op: str, fields: dict, timeout: float | None, layout: StepLayout | None = None
+                 ) -> Any:
+        """`op` with `fields` (with `layout`: a brain step whose `fields` are the readings, as records)."""
         assert self._worker is not None
         per_call = timeout or self.limits.call_seconds
         limit = min(per_call, self._budget_left())
@@ -260,7 +284,8 @@ class StudentSession:
         self.calls += 1
         self._worker.last_clock = None
         try:
-            response = self._worker.request(op, fields, limit)
+            response = self._worker.request(op, fields, limit) if layout is None \
+                else self._worker.step(layout, fields, limit)
         except StudentTimeout:
             raise self._timed_out(limit, per_call) from None
         except MachineStalled as exc:
@@ -368,6 +393,19 @@ class CappedText:
         return self._text
 
 
+def _week_layout(week: int) -> StepLayout | None:
+    """The step records of a scenario run of `week`: its declared signals and IR count (None for a week
+    the course does not have: its steps stay JSON)."""
+    from simiam.course.weeks import get_week
+    from simiam.signals import week_signals
+
+    try:
+        declaration = get_week(week)
+    except (KeyError, ValueError, LookupError):
+        return None
+    return layout_for(week_signals(declaration), len(declaration.spec.ir_mounts))
+
+
 def _choose(sandbox: str) -> str:
     if sandbox not in ("auto", isolation.BWRAP, isolation.SUBPROCESS):
         raise ValueError(f"sandbox must be auto, bwrap or subprocess, not {sandbox!r}")
@@ -466,13 +504,14 @@ class RemoteBrain:
         self.step_timeout = step_timeout
         self.cpu = cpu  # the core the grading thread keeps to for this run (grader.sandbox.same_core)
         self._started = False
+        self._layout: StepLayout | None = None  # the run's step records, once brain_start agreed on them
 
     def step(self, readings: Mapping[str, Any]) -> Any:
         if not self._started:
             if self.start is None:
-                self.session.call("brain_start", settings=self.settings, cpu=self.cpu)
+                self._layout = self.session.start_brain(settings=self.settings, cpu=self.cpu)
             else:
-                self.session.call("brain_start", settings=self.settings, cpu=self.cpu,
-                                  start=[float(c) for c in self.start])
+                self._layout = self.session.start_brain(settings=self.settings, cpu=self.cpu,
+                                                        start=[float(c) for c in self.start])
             self._started = True
-        return self.session.call("brain_step", timeout=self.step_timeout, readings=readings)
+        return self.session.brain_step(readings, self.step_timeout, self._layout)

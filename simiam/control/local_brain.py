@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 from simiam.control.pose import Pose2D
 from simiam.control.robot_view import RobotView
 from simiam.course.week import EXTRA_SETTINGS, NAMED_SETTINGS, check_setting_names, unknown_setting
-from simiam.signals import declared, read_signals, week_signals
+from simiam.signals import declared, read_plan, read_signals, week_signals
 from simiam.signals import plain as _plain
 
 if TYPE_CHECKING:
@@ -43,6 +43,7 @@ class LocalBrain:
         self.week = week
         self.signals = declared(week_signals(week))
         self._n_ir = len(week.spec.ir_mounts)
+        self._plan = read_plan(self.signals, self._n_ir)
         self.robot = RobotView(week.spec, submission)
         supervisor_class = submission.module("qb_supervisor").QBSupervisor
         self.supervisor = supervisor_class()
@@ -94,6 +95,6 @@ class LocalBrain:
             "vel_l": _plain(self.robot.vel_l),
             "estimate": [_plain(c) for c in sup.state_estimate.unpack()],
             "state": str(sup.current_state),
-            "debug": read_signals(sup, self.signals, self._n_ir),
+            "debug": read_signals(sup, self.signals, self._n_ir, self._plan),
         }
 

@@ -9,7 +9,7 @@ import pytest
 from sandbox_wrong import naive
 
 from grader.inside import protocol
-from grader.inside.protocol import LineReader, NotJSON, ProtocolError, decode, encode, to_json
+from grader.inside.protocol import FrameReader, NotJSON, ProtocolError, decode, encode, to_json
 
 HOSTILE_LINES = [
     b'{"id": 1, "ok": true, "value": NaN}',
@@ -42,17 +42,17 @@ def test_the_naive_decoder_lets_them_through():
 def test_oversized_messages_are_refused_before_parsing():
     with pytest.raises(ProtocolError, match="cap"):
         decode(b'"' + b"x" * (protocol.MAX_MESSAGE + 1) + b'"')
-    reader = LineReader(cap=1000)
+    reader = FrameReader(cap=1000)
     with pytest.raises(ProtocolError, match="cap"):
         reader.feed(b"x" * 1001)
 
 
 def test_line_reader_splits_and_keeps_partial_lines():
-    reader = LineReader()
+    reader = FrameReader()
     reader.feed(b'{"id": 1}\n{"id"')
-    assert reader.pop_line() == b'{"id": 1}' and reader.pop_line() is None
+    assert reader.pop() == b'{"id": 1}' and reader.pop() is None
     reader.feed(b': 2}\n')
-    assert decode(reader.pop_line()) == {"id": 2}
+    assert decode(reader.pop()) == {"id": 2}
 
 
 def test_nonfinite_floats_cross_only_in_explicit_form():
