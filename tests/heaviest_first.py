@@ -56,6 +56,7 @@ SECONDS: dict[str, float] = {
     "tests/sandbox/test_attacks.py": 20.0,
     "tests/platforms/test_prairielearn.py": 20.0,
     "tests/sandbox/test_answer_bounds.py": 18.0,
+    "tests/sandbox/test_stuck.py": 15.0,
     "tests/platforms/test_bundle.py": 15.0,
     "tests/batch/test_batch_dask.py": 14.0,
     "tests/sandbox/test_attacks_graded.py": 12.0,
