@@ -154,7 +154,7 @@ def test_no_page_of_the_class_runs_script(graded) -> None:
                 page.goto(page_path.as_uri())
                 page.wait_for_load_state("load")
                 opened.append(page)
-            # an <img onerror> fires once the broken image fails: each page closes 200 ms or more after its load
+            # an <img onerror> fires once the broken image fails: each page closes 200 ms or more after load
             opened[-1].wait_for_timeout(200)
             for page in opened:
                 page.close()
