@@ -63,6 +63,7 @@ SECONDS: dict[str, float] = {
     "tests/batch/test_hostile_pages.py": 12.0,
     "tests/grader/test_tracking_goals.py": 10.0,
     "tests/grader/test_hidden_week6.py": 10.0,
+    "tests/platforms/test_gradescope_bundle.py": 10.0,
     "tests/fidelity/test_week7_reference.py": 10.0,
     "tests/sandbox/test_worker_clock.py": 10.0,
     "tests/grader/test_hidden.py": 9.0,
@@ -74,11 +75,10 @@ SECONDS: dict[str, float] = {
 
 
 def expected_seconds(scope: str, tests: int) -> float:
-    """What a module (or a group of TOGETHER) is expected to cost: its measured seconds, or PER_TEST per
-    test."""
+    """What a module (or a group of TOGETHER: its members' figures added) is expected to cost: its measured
+    seconds, and at least PER_TEST per test."""
     members = [module for module, group in TOGETHER.items() if group == scope] or [scope]
-    known = [SECONDS[module] for module in members if module in SECONDS]
-    return sum(known) if len(known) == len(members) else PER_TEST * tests
+    return max(sum(SECONDS.get(module, 0.0) for module in members), PER_TEST * tests)
 
 
 class HeaviestFirst(LoadScopeScheduling):

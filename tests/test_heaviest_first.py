@@ -73,6 +73,15 @@ def test_modules_sharing_the_bundle_are_one_unit(monkeypatch) -> None:
     assert first_sent(HeaviestFirst, collection) == [shared[0], "tests/many_light.py"]
 
 
+def test_a_group_with_an_unmeasured_member_counts_its_measured_ones(monkeypatch) -> None:
+    """The wrong version this catches handed the whole group out last, at PER_TEST a test, as soon as one
+    member lacked a figure."""
+    shared = sorted(TOGETHER)
+    monkeypatch.setattr(heaviest_first, "SECONDS", {shared[0]: 80.0})
+    assert heaviest_first.expected_seconds(TOGETHER[shared[0]], 4) == 80.0
+    assert heaviest_first.expected_seconds("tests/unmeasured.py", 20) == 20 * heaviest_first.PER_TEST
+
+
 def test_every_module_the_table_names_exists() -> None:
     named = set(SECONDS) | set(TOGETHER)
     assert [m for m in sorted(named) if not (ROOT / m).is_file()] == []
