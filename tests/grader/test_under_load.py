@@ -52,10 +52,9 @@ SUBSET = ["solutions/week3::week3.go_to_goal.reach_goals", "solutions/week6::wee
 EVERY = sorted(label for label, week in versions().items() if 3 <= week <= 7)
 
 
-@pytest.fixture
+@pytest.fixture(scope="module")
 def saturated() -> Iterator[Saturated]:
-    """Four processes spinning on the (two) cores for the whole test (only the tests that ask for them: in
-    the full suite they slow the other worker's tests too)."""
+    """Four processes spinning on the (two) cores for the whole module."""
     with Saturated(4) as busy:
         yield busy
 
