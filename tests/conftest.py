@@ -3,7 +3,19 @@ solutions/ plus a small patch) imports from tests/grader, tests/course and tests
 
 import sys
 
+import pytest
+
 # Before any test module imports numpy: the numeric environment every run of controller code uses (one
 # BLAS kernel, one thread, one SIMD level; simiam.numerics). pytest's own plugins do not import numpy.
 assert "numpy" not in sys.modules, "numpy was imported before simiam could pin the numeric environment"
 import simiam  # noqa: E402,F401
+
+
+@pytest.hookimpl(tryfirst=True, optionalhook=True)
+def pytest_xdist_make_scheduler(config: pytest.Config, log: object) -> object | None:
+    """`--dist loadscope` with the heaviest modules handed out first (tests/heaviest_first.py)."""
+    if config.getvalue("dist") != "loadscope":
+        return None
+    from heaviest_first import HeaviestFirst
+
+    return HeaviestFirst(config, log)
