@@ -5,6 +5,7 @@ took the first on PATH, and every grading crashed where that was in a folder onl
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import time
 from pathlib import Path
@@ -41,13 +42,14 @@ def test_the_helper_is_one_the_uid_can_run(private_kill_first: Path) -> None:
 def test_kill_uid_kills_with_a_private_kill_first_on_path(private_kill_first: Path, monkeypatch) -> None:
     uid = pick_uid()
     assert uid is not None
-    sleeper = subprocess.Popen(["sleep", "60"], user=uid, group=uid, extra_groups=[], cwd="/")
+    sleep = [os.path.realpath(shutil.which("sleep") or "/bin/sleep"), "60"]  # by a path the uid can run
+    sleeper = subprocess.Popen(sleep, user=uid, group=uid, extra_groups=[], cwd="/")
     try:
         runner.kill_uid(uid)
         assert sleeper.wait(timeout=10) == -9, "the uid's process survived kill_uid"
         monkeypatch.setattr(runner, "_kill_helper", path_kill.kill_helper)
         with pytest.raises(PermissionError):  # the old choice: the grading itself dies
-            again = subprocess.Popen(["sleep", "60"], user=uid, group=uid, extra_groups=[], cwd="/")
+            again = subprocess.Popen(sleep, user=uid, group=uid, extra_groups=[], cwd="/")
             try:
                 runner.kill_uid(uid)
             finally:
