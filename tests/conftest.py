@@ -7,3 +7,7 @@ import sys
 # BLAS kernel, one thread, one SIMD level; simiam.numerics). pytest's own plugins do not import numpy.
 assert "numpy" not in sys.modules, "numpy was imported before simiam could pin the numeric environment"
 import simiam  # noqa: E402,F401
+
+# isort: split
+# Without bubblewrap, a test skipped for want of it must be marked `sandbox` (tests/mode_audit.py).
+from mode_audit import pytest_runtest_makereport  # noqa: E402,F401

@@ -190,6 +190,7 @@ CHEAT = '''
 '''
 
 
+@pytest.mark.sandbox
 @pytest.mark.skipif(not bwrap_works()[0], reason="only bubblewrap hides files; subprocess mode says so")
 def test_the_installed_reference_code_is_out_of_reach_of_student_code(student: dict) -> None:
     course = _course(student, "cheat", weeks=(2,))
