@@ -10,6 +10,10 @@ import pytest
 assert "numpy" not in sys.modules, "numpy was imported before simiam could pin the numeric environment"
 import simiam  # noqa: E402,F401
 
+# isort: split
+# Without bubblewrap, a test skipped for want of it must be marked `sandbox` (tests/mode_audit.py).
+from mode_audit import pytest_runtest_makereport  # noqa: E402,F401
+
 
 @pytest.hookimpl(tryfirst=True, optionalhook=True)
 def pytest_xdist_make_scheduler(config: pytest.Config, log: object) -> object | None:

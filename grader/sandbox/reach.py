@@ -36,3 +36,16 @@ def readable(path: str | Path) -> bool:
         return False
     needed = stat.S_IROTH | (stat.S_IXOTH if stat.S_ISDIR(mode) else 0)
     return mode & needed == needed and enterable(path.parent)
+
+
+def executable(path: str | Path) -> bool:
+    """True if others may run `path`: the folders down to it enterable, and the file it names (after links,
+    whose folders must be enterable too) a regular file with o+x."""
+    path = Path(path).absolute()
+    target = path.resolve()
+    try:
+        mode = os.stat(target).st_mode
+    except OSError:
+        return False
+    return (stat.S_ISREG(mode) and bool(mode & stat.S_IXOTH) and enterable(path.parent)
+            and enterable(target.parent))

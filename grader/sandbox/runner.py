@@ -41,6 +41,7 @@ from grader.inside.protocol import (
     encode_request,
 )
 from grader.inside.step_record import StepLayout
+from grader.sandbox import reach
 from grader.sandbox.errors import MachineStalled, StudentTimeout, WorkerDied
 from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
 from grader.sandbox.leftovers import remove_files_of, remove_ipc_of
@@ -460,15 +461,22 @@ def kill_uid(uid: int, rounds: int = 20) -> None:
     (new session, double fork, reparented). The helper is exec'd by subprocess with `user=`, so no Python
     code runs in a forked copy of the (threaded) grader.
     """
-    helper = [shutil.which("kill") or "/bin/kill", "-KILL", "-1"]
-    if not os.path.exists(helper[0]):
-        helper = [sys.executable, "-I", "-S", "-c", "import os; os.kill(-1, 9)"]
+    helper = _kill_helper()
     for _ in range(rounds):
         if not _uid_alive(uid):
             return
         subprocess.run(helper, user=uid, group=uid, extra_groups=[], stdin=subprocess.DEVNULL,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False, close_fds=True)
         time.sleep(0.002)
+
+
+def _kill_helper() -> list[str]:
+    """kill(-1) as a command the dedicated uid can run: root's PATH may name a `kill` in a folder only root
+    can enter (a home folder), which the dropped uid cannot exec (grader.sandbox.reach)."""
+    for candidate in (shutil.which("kill"), "/usr/bin/kill", "/bin/kill"):
+        if candidate and reach.executable(candidate):
+            return [candidate, "-KILL", "-1"]
+    return [sys.executable, "-I", "-S", "-c", "import os; os.kill(-1, 9)"]
 
 
 def _uid_alive(uid: int) -> bool:

@@ -46,7 +46,9 @@ def test_a_loop_in_go_to_goal_execute_is_named_in_the_message_table_and_report(t
 
 
 @pytest.mark.parametrize("mode", [
-    pytest.param(BWRAP, marks=pytest.mark.skipif(not bwrap_works()[0], reason=bwrap_works()[1])), SUBPROCESS])
+    pytest.param(BWRAP, marks=[pytest.mark.sandbox,
+                               pytest.mark.skipif(not bwrap_works()[0], reason=bwrap_works()[1])]),
+    SUBPROCESS])
 def test_a_loop_in_uni_to_diff_is_named_in_the_property_message(tmp_path: Path, mode: str) -> None:
     folder = build("week2_endless_loop", 2, tmp_path)
     line = stuck_line(folder, "differential_drive.py")

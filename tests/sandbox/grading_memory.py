@@ -25,6 +25,7 @@ def peak_mib() -> float:
 
 def main() -> None:
     folder, mode, check_id = sys.argv[1:4]
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2]))  # this checkout's grader, not one installed
     if "--wrong" in sys.argv[4:]:
         sys.path.insert(0, str(Path(__file__).resolve().parent))
         from sandbox_wrong import unbounded_answers

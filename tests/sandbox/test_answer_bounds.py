@@ -156,7 +156,7 @@ def test_flooding_answers_leaves_the_grading_process_within_its_bound(tmp_path, 
     beyond its values; 12 KB: within every bound of one answer, so the request's budget is what binds."""
     if mode not in honest_peak:
         control = _peak(REPO / "solutions" / "week2", mode)
-        assert control["status"] == "passed"
+        assert control["status"] == "passed", control
         honest_peak[mode] = control["peak_mib"]
     hostile = _peak(graded_attack(tmp_path, "flood_answers", bytes=size), mode)
     assert hostile["points"] == 0 and hostile["status"] in ("failed", "error")

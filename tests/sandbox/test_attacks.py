@@ -32,7 +32,7 @@ REPO = Path(__file__).resolve().parents[2]
 
 def _needs_own_uid(mode: str) -> None:
     if mode != BWRAP and not AS_ROOT:
-        pytest.skip("documented: without bubblewrap or root the worker runs as the grader's own user")
+        pytest.skip("documented: without root, subprocess mode runs the worker as the grader's own user")
 
 
 def _uid(session) -> int | None:

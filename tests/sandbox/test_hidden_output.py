@@ -21,7 +21,8 @@ from grader.platforms import gradescope, prairielearn
 from grader.sandbox.isolation import BWRAP, SUBPROCESS, bwrap_works
 
 SEED = 918273645
-MODES = [pytest.param(BWRAP, marks=pytest.mark.skipif(not bwrap_works()[0], reason="no bubblewrap here")),
+MODES = [pytest.param(BWRAP, marks=[pytest.mark.sandbox,
+                                    pytest.mark.skipif(not bwrap_works()[0], reason="no bubblewrap here")]),
          SUBPROCESS]
 
 

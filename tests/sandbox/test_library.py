@@ -17,6 +17,9 @@ from grader.sandbox import exposed, isolation, library
 from grader.sandbox.isolation import BWRAP
 
 REPO = Path(__file__).resolve().parents[2]
+# Only bubblewrap workers share the library and see it through a bind (a subprocess gets a copy of its own).
+needs_bwrap = pytest.mark.skipif(not isolation.bwrap_works()[0],
+                                 reason="only bubblewrap workers share the library")
 NORM = "simiam/control/norm.py"
 
 
@@ -124,6 +127,8 @@ def test_old_versions_are_pruned_after_a_week(cache, own_norm):
     assert not first.exists() and second.exists()
 
 
+@pytest.mark.sandbox
+@needs_bwrap
 def test_the_worker_imports_the_librarys_bytecode(open_one, cache):
     """The point of the library: the worker's imports read its .pyc (here one whose code differs from its
     source while its header still matches the source; only the cache's owner could write one)."""
@@ -133,8 +138,7 @@ def test_the_worker_imports_the_librarys_bytecode(open_one, cache):
     source = (folder / relative).read_text() + "\nFROM_BYTECODE = True\n"
     pyc.write_bytes(pyc.read_bytes()[:16] + marshal.dumps(compile(source, relative, "exec")))
     session = open_one("poison_library")
-    if session.isolation != BWRAP:
-        pytest.skip("only bubblewrap workers share the library")
+    assert session.isolation == BWRAP
     assert attack(session, fn="marker", module="grader.inside.probes_week6", name="FROM_BYTECODE") is True
 
 
@@ -162,6 +166,7 @@ def _sources() -> dict[str, bytes]:
     return {r: exposed.source_of(r).read_bytes() for r in exposed.EXPOSED}
 
 
+@pytest.mark.parametrize("mode", [pytest.param(BWRAP, marks=[pytest.mark.sandbox, needs_bwrap])])
 def test_the_test_sees_a_writable_library(open_session, monkeypatch, cache):
     """The wrong version: the library bound read-write. The same attempts then fail for another reason
     (file permissions: the worker's own uid) or succeed, and the test above sees it."""
@@ -176,8 +181,6 @@ def test_the_test_sees_a_writable_library(open_session, monkeypatch, cache):
 
     monkeypatch.setattr(isolation, "plan_worker", writable)
     session = open_session("poison_library")
-    if session.isolation != BWRAP:
-        pytest.skip("the bind is bubblewrap's")
     results = attack(session)["results"]
     assert not _refused_by_the_mount(results), results
 
