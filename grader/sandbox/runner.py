@@ -173,12 +173,7 @@ class WorkerProcess:
                         return {"id": rid, "ok": True, "value": layout.decode_answer(data[HEADER.size:])}
                     except ProtocolError as exc:
                         self._die(f"it broke the protocol ({exc})")
-            if not data:
-                self._die(self._exit_reason())
-            try:
-                self._reader.feed(data)
-            except ProtocolError as exc:
-                self._die(f"it broke the protocol ({exc})")
+            self._take(data)
         return self._receive(rid, clock, "brain_step", layout)
 
     def _clock(self, pid: int | None, timeout: float) -> CallClock:
@@ -246,14 +241,17 @@ class WorkerProcess:
                     raise StudentTimeout(f"{what} within the time limit")
                 continue
             data = self._read_answers(left)
-            if data is None:
-                continue
-            if not data:
-                self._die(self._exit_reason())
-            try:
-                self._reader.feed(data)
-            except ProtocolError as exc:
-                self._die(f"it broke the protocol ({exc})")
+            if data is not None:
+                self._take(data)
+
+    def _take(self, data: bytes) -> None:
+        """Hand what the worker wrote to the frame reader: its end, or a broken frame, ends the worker."""
+        if not data:
+            self._die(self._exit_reason())
+        try:
+            self._reader.feed(data)
+        except ProtocolError as exc:
+            self._die(f"it broke the protocol ({exc})")
 
     def _read_answers(self, seconds: float) -> bytes | None:
         """What the worker wrote on the answer pipe within `seconds` (b"" at its end, None if nothing)."""
