@@ -71,6 +71,9 @@ def descendants(root: int, leave: set[int]) -> list[int]:
     return found
 
 
+LOOK_AGAIN = 0.005  # s
+
+
 class Pauser:
     """A thread that stops every process this test process started (but `leave`) for `seconds`, at random
     moments until the block ends: the first `first` seconds after the start, the next ones `gap` seconds
@@ -97,10 +100,10 @@ class Pauser:
         self._thread.join()
 
     def _run(self) -> None:
-        gap = self.first
-        while not self._stop.wait(self.random.uniform(*gap)):
-            if self.pause_once():
-                gap = self.gap
+        wait = self.random.uniform(*self.first)
+        while not self._stop.wait(wait):
+            # a moment that found no worker looks again soon: a grading of 0.2 s is paused once it runs
+            wait = self.random.uniform(*self.gap) if self.pause_once() else LOOK_AGAIN
 
     def pause_once(self) -> bool:
         """Stop the workers now, for `seconds`; False if there was none."""

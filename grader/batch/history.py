@@ -79,7 +79,7 @@ def change(old: dict | None, new: dict, kept: str | None, asked: str | None = No
         return None
     return {"score_before": _score(old), "score_after": _score(new), "status_before": old.get("status"),
             "status_after": new.get("status"), "reasons": reasons(old, new, asked), "history": kept,
-            "at": datetime.now(timezone.utc).isoformat(timespec="seconds")}
+            "at": datetime.now(timezone.utc).isoformat()}
 
 
 def changed_rows(results: dict[str, dict], since: datetime | None = None) -> list[dict]:
@@ -102,8 +102,8 @@ def changed_rows(results: dict[str, dict], since: datetime | None = None) -> lis
                      "status_before": str(record.get("status_before"))[:20],
                      "status_after": str(record.get("status_after"))[:20],
                      "reasons": [w for w in words if w in REASONS] if isinstance(words, list) else [],
-                     "at": at.isoformat(timespec="seconds") if at else "",
-                     "this_run": bool(at and since and at >= since.replace(microsecond=0))})
+                     "at": at.isoformat() if at else "",
+                     "this_run": bool(at and since and at >= since)})
     rows.sort(key=lambda row: not row["this_run"])     # stable: by student within each part
     return rows
 

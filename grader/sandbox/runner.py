@@ -163,8 +163,9 @@ class WorkerProcess:
         except OSError:
             self._die("it stopped reading requests")
         clock = self._clock(self.host_pid, timeout)
-        if self._resp_r >= 0 and not self._reader.pending and \
-                self._answers.poll(int(clock.next_wait() * 1000) + 1):
+        wait = clock.next_wait()      # 0: already past its bound (a stalled machine): the general wait judges
+        if wait > 0 and self._resp_r >= 0 and not self._reader.pending and \
+                self._answers.poll(int(wait * 1000) + 1):
             data = os.read(self._resp_r, 1 << 16)
             if len(data) > HEADER.size and data[0] == ANSWER:
                 _, got, size = HEADER.unpack_from(data)

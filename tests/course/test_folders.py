@@ -91,6 +91,11 @@ def test_the_hidden_set_lives_with_the_instructor_tools(monkeypatch) -> None:
     assert hidden_dir() == ROOT / "instructor_tools" / "hidden"
     assert load_hidden(4)["variants"]
     # nothing hidden left inside the grader package: its only JSON are the visible checks' expected values
-    expected = ROOT / "grader" / "checks" / "expected"
-    assert not [p for p in (ROOT / "grader").rglob("*.json") if p.parent != expected]
+    # and the practice sets students are meant to have (none of their variants a hidden one:
+    # tests/grader/test_practice.py), and no hidden set's text is among them
+    expected, practice = ROOT / "grader" / "checks" / "expected", ROOT / "grader" / "practice"
+    shipped = list((ROOT / "grader").rglob("*.json"))
+    assert not [p for p in shipped if p.parent not in (expected, practice)]
     assert not [p for p in expected.glob("*.json") if "variants" in p.read_text()]
+    hidden = {p.read_text() for p in hidden_dir().glob("*.json")}
+    assert len(hidden) >= 4 and not [p for p in shipped if p.read_text() in hidden]

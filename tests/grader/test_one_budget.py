@@ -70,6 +70,8 @@ def test_the_total_binds_the_runs_on_the_second_worker(tmp_path: Path, monkeypat
     result, sessions = grade_counting_sessions(tmp_path, monkeypatch, Limits(total_seconds=0.05))
     check = result["checks"][0]
     print(check["message"])
-    assert check["status"] == "timeout" and check["points"] == 0
+    # a run that ended before the total ran out keeps its points (with step records a whole run of week 5
+    # can take less than 0.05 s of CPU); the run that found the total spent is the timeout
+    assert check["status"] == "timeout" and check["points"] < check["max_points"]
     assert "the submission used up its total time of 0.05 s" in check["message"]
     assert one_budget(result, sessions) == [] and sessions[1].calls > 0
