@@ -109,13 +109,13 @@ def _simulator(week_n: int, brain: Any) -> tuple[Simulator, int]:
     return sim, int(round(week.seconds / week.dt))
 
 
-def _steps(sim: Simulator, n: int, pids: list[int | str]) -> float:
-    """us of CPU per step of `pids` over steps 2..n."""
+def _steps(sim: Simulator, n: int, pids: list[int | str]) -> list[float]:
+    """us of CPU per step of each of `pids` over steps 2..n."""
     sim.step()
-    before = sum(schedstat_ns(p) for p in pids)
+    before = [schedstat_ns(p) for p in pids]
     for _ in range(n - 1):
         sim.step()
-    return (sum(schedstat_ns(p) for p in pids) - before) / (n - 1) / 1000
+    return [(schedstat_ns(p) - b) / (n - 1) / 1000 for p, b in zip(pids, before, strict=True)]
 
 
 def record(week_n: int, folder: Path) -> Recorder:
@@ -134,12 +134,13 @@ def one_process(week_n: int, folder: Path) -> float:
     week = get_week(week_n)
     sub = load_submission(folder, week)
     sim, n = _simulator(week_n, LocalBrain(sub, week))
-    us = _steps(sim, n, ["thread-self"])
+    us = _steps(sim, n, ["thread-self"])[0]
     sub.unload()
     return us
 
 
-def ideal(week_n: int, folder: Path, recorder: Recorder) -> float:
+def ideal(week_n: int, folder: Path, recorder: Recorder) -> list[float]:
+    """[the parent's, the child's] us of CPU per step."""
     with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
         json.dump(recorder.readings, f)
     try:
@@ -160,8 +161,9 @@ def ideal(week_n: int, folder: Path, recorder: Recorder) -> float:
     return us
 
 
-def channel_step(week_n: int, folder: Path, sandbox: str) -> float:
-    """The grader's real step (RemoteBrain over a sandboxed worker), grader thread + worker CPU."""
+def channel_step(week_n: int, folder: Path, sandbox: str) -> list[float]:
+    """The grader's real step (RemoteBrain over a sandboxed worker): [grader thread's, worker's] us of CPU
+    per step."""
     from grader.sandbox.session import RemoteBrain, StudentSession
 
     with StudentSession(week_n, folder, sandbox=sandbox) as session, SameCore() as cpu:
@@ -179,7 +181,8 @@ def _against(directory: Path, week_n: int, sandbox: str) -> float:
             f"print(m['channel_step']({week_n}, m['ROOT'] / 'solutions' / 'week{week_n}', {sandbox!r}))")
     done = subprocess.run([sys.executable, "-c", code], env=env, cwd=directory, capture_output=True,
                           text=True, check=True)
-    return float(done.stdout.split()[-1])
+    said = done.stdout.strip().splitlines()[-1]  # a checkout before the split prints the sum only
+    return sum(json.loads(said)) if said.startswith("[") else float(said)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -200,11 +203,14 @@ def main(argv: list[str] | None = None) -> int:
             steps.append(channel_step(week_n, folder, args.sandbox))
             if args.against:
                 others.append(_against(args.against, week_n, args.sandbox))
-        best_ideal, best_step = min(ideals), min(steps)
+        (parent, child), (grader, worker) = min(ideals, key=sum), min(steps, key=sum)
+        best_ideal, best_step = parent + child, grader + worker
         line = (f"week{week_n} ({len(recorder.answers)} steps): step {best_step:.1f} us "
                 f"= {best_step / best_ideal:.2f}x ideal, {best_step / one:.1f}x one process; "
                 f"ideal two-process {best_ideal:.1f} us = {best_ideal / one:.1f}x one process; "
-                f"one process {one:.1f} us (best of {args.repeat}; CPU of both processes per step)")
+                f"one process {one:.1f} us (best of {args.repeat}; CPU of both processes per step); "
+                f"split: step grader {grader:.1f} + worker {worker:.1f}, ideal parent {parent:.1f} + child "
+                f"{child:.1f} (above the ideal: grader {grader - parent:+.1f}, worker {worker - child:+.1f})")
         if others:
             line += (f"; {args.against} step {min(others):.1f} us = {min(others) / best_ideal:.2f}x ideal "
                      f"(this step {best_step / min(others):.2f}x it)")

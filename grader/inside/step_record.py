@@ -26,11 +26,10 @@ from __future__ import annotations
 
 import struct
 from collections.abc import Callable, Sequence
-from itertools import chain
-from operator import itemgetter
 from typing import Any
 
-from grader.inside.protocol import ANSWER, HEADER, REQUEST, ProtocolError
+from grader.inside.protocol import HEADER, REQUEST, ProtocolError
+from grader.inside.record_codec import compile_codec
 from simiam.signals import KINDS, declared
 
 STATE_BYTES = 320  # UTF-8 bytes of a state name in a record (4 per character of simiam.brain.STATE_CHARS)
@@ -59,7 +58,6 @@ class StepLayout:
         self._flags = tuple(s.name for s in group["flag"])
         self._labels = tuple(s.name for s in group["label"])
         self._zero = {s.name: _ZERO[s.kind](s.columns(self.n_ir)) for s in signals}  # an absent value's slot
-        self._get = {kind: _getter(tuple(s.name for s in group[kind])) for kind in KINDS}
         n_floats = len(self._scalars) + 2 * len(self._vectors) + sum(2 * n for _, n in self._points)
         self.answer = struct.Struct(f"<5dH{len(signals)}s{n_floats}d{len(self._counts)}q{len(self._flags)}s"
                                     f"{len(self._labels)}H")
@@ -78,6 +76,8 @@ class StepLayout:
         self._label_presence = tuple(self.names.index(name) for name in self._labels)
         self._all_present = b"\x01" * len(signals)
         self.max_answer = self.answer.size + STATE_BYTES + LABEL_BYTES * len(self._labels)
+        caps = {"STATE_BYTES": STATE_BYTES, "LABEL_BYTES": LABEL_BYTES, "MAX_INT64": MAX_INT64, "BITS": _BITS}
+        self._encode, self._decode = compile_codec(self, caps)  # straight-line code for this layout
 
     def to_json(self) -> dict:
         """What brain_start sends: enough for the worker to build the same layout."""
@@ -95,138 +95,24 @@ class StepLayout:
             return None
         return HEADER.pack(REQUEST, rid, len(payload)) + payload
 
-    def decode_readings(self, payload: bytes) -> dict:
-        """The readings dict JSON would give (inside the worker)."""
-        if len(payload) != self.readings.size:
-            raise ProtocolError(f"a readings record of {len(payload)} bytes, not {self.readings.size}")
-        t, dt, right, left, *ir_raw = self.readings.unpack(payload)
+    def decode_readings(self, data: bytes, at: int = 0) -> dict:
+        """The readings dict JSON would give, from the record's payload `data[at:]` (inside the worker)."""
+        if len(data) - at != self.readings.size:
+            raise ProtocolError(f"a readings record of {len(data) - at} bytes, not {self.readings.size}")
+        t, dt, right, left, *ir_raw = self.readings.unpack_from(data, at)
         return {"t": t, "dt": dt, "ticks": [right, left], "ir_raw": ir_raw}
 
     # ---- answers: the worker writes them, the grader checks and reads them ---------------------------
     def encode_answer(self, rid: int, answer: Any) -> bytes | None:
         """The brain's answer as a record, or None if any value is not of its canonical type (the worker
         then sends JSON, as before records)."""
-        if type(answer) is not dict:
-            return None
-        get = answer.get
-        vel_r, vel_l, est, state, debug = get("vel_r"), get("vel_l"), get("estimate"), get("state"), \
-            get("debug")
-        if type(vel_r) is not float or type(vel_l) is not float or type(est) is not list or len(est) != 3 \
-                or type(state) is not str or type(debug) is not dict or len(debug) != len(self.names):
-            return None
-        x, y, theta = est
-        if type(x) is not float or type(y) is not float or type(theta) is not float:
-            return None
-        presence = self._all_present
-        if None in debug.values():  # absent signals: zeros in their slots, 0 in their presence bytes
-            presence = bytes(debug.get(name, 0) is not None for name in self.names)
-            debug = {name: self._zero[name] if value is None else value for name, value in debug.items()}
-        try:
-            fields = self._debug_fields(debug)
-            texts = [state.encode(), *(text.encode() for text in fields.pop())]
-        except (KeyError, TypeError, ValueError, AttributeError):  # UnicodeEncodeError: a lone surrogate
-            return None
-        if len(texts[0]) > STATE_BYTES or max(map(len, texts[1:]), default=0) > LABEL_BYTES:
-            return None
-        payload = self.answer.pack(vel_r, vel_l, x, y, theta, len(texts[0]), presence, *fields,
-                                   *map(len, texts[1:])) + b"".join(texts)
-        return HEADER.pack(ANSWER, rid, len(payload)) + payload
-
-    def _debug_fields(self, debug: dict) -> list:
-        """The debug values in the record's order (the floats, the counts, the flags' bytes) and, last,
-        the labels; TypeError or ValueError for a value not of its kind's canonical type. Groups the
-        layout does not have cost nothing."""
-        get = self._get
-        floats = list(get["scalar"](debug)) if self._scalars else []
-        if self._vectors:
-            vectors = get["vector2"](debug)
-            if set(map(type, vectors)) != {list} or set(map(len, vectors)) != {2}:
-                raise TypeError
-            floats += chain.from_iterable(vectors)
-        if self._points:
-            for rows, (_name, n) in zip(get["points"](debug), self._points, strict=False):
-                if type(rows) is not list or len(rows) != 2 or type(rows[0]) is not list \
-                        or type(rows[1]) is not list or len(rows[0]) != n or len(rows[1]) != n:
-                    raise TypeError
-                floats += rows[0]
-                floats += rows[1]
-        if floats and set(map(type, floats)) != {float}:
-            raise TypeError
-        if self._counts:
-            counts = get["count"](debug)
-            if set(map(type, counts)) != {int} or not -MAX_INT64 <= min(counts) <= max(counts) <= MAX_INT64:
-                raise ValueError
-            floats += counts
-        flags = get["flag"](debug) if self._flags else ()
-        if flags and set(map(type, flags)) != {bool}:
-            raise TypeError
-        floats.append(bytes(flags))
-        labels = get["label"](debug) if self._labels else ()
-        if labels and set(map(type, labels)) != {str}:
-            raise TypeError
-        floats.append(labels)
-        return floats
+        return self._encode(rid, answer)
 
     def decode_answer(self, payload: bytes) -> dict:
         """The answer dict JSON would give, from a record of the (untrusted) worker; ProtocolError for any
         frame that is not exactly of this layout. Every check on the frame comes before any value is
         taken from it."""
-        size, fixed = len(payload), self.answer.size
-        if not fixed <= size <= self.max_answer:
-            raise ProtocolError(f"a step record of {size} bytes, where this run's layout takes "
-                                f"{fixed} to {self.max_answer}")
-        raw = self.answer.unpack_from(payload)
-        state_len, presence = raw[5], raw[6]
-        if presence.translate(None, _BITS) or self._flags and raw[self._flags_at].translate(None, _BITS):
-            raise ProtocolError("a presence or flag byte other than 0 or 1 in a step record")
-        if state_len > STATE_BYTES:
-            raise ProtocolError("a string in a step record longer than its cap")
-        taken = fixed + state_len
-        if self._labels:
-            lengths = raw[self._labels_at:]
-            if max(lengths) > LABEL_BYTES:
-                raise ProtocolError("a string in a step record longer than its cap")
-            for length, at in zip(lengths, self._label_presence, strict=False):
-                if length and not presence[at]:
-                    raise ProtocolError("a length for an absent label in a step record")
-            taken += sum(lengths)
-        if taken != size:
-            raise ProtocolError(f"a step record of {size} bytes whose fields take {taken}")
-        # the frame is whole and well-formed: now its values
-        try:
-            state = str(payload[fixed:fixed + state_len], "utf-8")
-            debug: dict[str, Any] = dict(zip(self._scalars, raw[self._floats:self._vectors_at], strict=False))
-            for name, at in self._vector_at:
-                debug[name] = [raw[at], raw[at + 1]]
-            for name, at, n in self._points_at:
-                debug[name] = [list(raw[at:at + n]), list(raw[at + n:at + 2 * n])]
-            if self._counts:
-                debug.update(zip(self._counts, raw[self._counts_at:self._flags_at], strict=False))
-            if self._flags:
-                debug.update(zip(self._flags, map(bool, raw[self._flags_at]), strict=False))
-            if self._labels:
-                end = fixed + state_len
-                for name, length in zip(self._labels, raw[self._labels_at:], strict=False):
-                    debug[name] = str(payload[end:end + length], "utf-8")
-                    end += length
-        except UnicodeDecodeError:
-            raise ProtocolError("a string in a step record that is not UTF-8") from None
-        if presence != self._all_present:
-            for name, present in zip(self.names, presence, strict=False):
-                if not present:
-                    debug[name] = None
-        return {"vel_r": raw[0], "vel_l": raw[1], "estimate": [raw[2], raw[3], raw[4]], "state": state,
-                "debug": debug}
-
-
-def _getter(names: tuple[str, ...]) -> Callable[[dict], tuple]:
-    """A function giving the values of `names` from a dict, as a tuple (KeyError for a missing one)."""
-    if not names:
-        return lambda _debug: ()
-    if len(names) == 1:
-        name = names[0]
-        return lambda debug: (debug[name],)
-    return itemgetter(*names)
+        return self._decode(payload)
 
 
 _LAYOUTS: dict[tuple, StepLayout] = {}

@@ -104,25 +104,26 @@ class _Worker:
             yield self.handle({"name": fields.get("name"), "args": fields.get("args"), "op": "probe",
                                "id": rid + offset})
 
-    def step(self, record: Record) -> bytes:
-        """A step's readings record, answered: a step record, or JSON where the answer is not of the
-        record's canonical types or the student's code raised (grader.inside.step_record)."""
+    def step(self, kind: int, rid: int, data: bytes, at: int) -> bytes:
+        """A step's readings record (kind, id, its payload from `data[at:]`), answered: a step record, or
+        JSON where the answer is not of the record's canonical types or the student's code raised
+        (grader.inside.step_record)."""
         layout = self.layout
-        if record.kind != REQUEST or layout is None or self.brain is None:
+        if kind != REQUEST or layout is None or self.brain is None:
             raise ProtocolError("a step record before brain_start agreed on records")
-        readings = layout.decode_readings(record.payload)
+        readings = layout.decode_readings(data, at)
         try:
             answer = self.brain.step(readings)
         except BaseException as exc:  # noqa: BLE001 - as handle()
-            return _encoded({"id": record.rid, "ok": False, "error": self.describe(exc)})
-        frame = layout.encode_answer(record.rid, answer)
+            return _encoded({"id": rid, "ok": False, "error": self.describe(exc)})
+        frame = layout.encode_answer(rid, answer)
         if frame is not None:
             return frame
-        response = self.respond(record.rid, lambda: answer)  # exactly as before records
+        response = self.respond(rid, lambda: answer)  # exactly as before records
         try:
             return _encoded(response)
         except (ValueError, TypeError):
-            return _encoded({"id": record.rid, "ok": False,
+            return _encoded({"id": rid, "ok": False,
                              "error": {"type": "NotJSON", "message": "the answer could not be encoded"}})
 
     def handle(self, request: dict) -> dict:
@@ -248,22 +249,27 @@ def serve(config: dict) -> None:
             if not data:
                 return
             if data[0] == REQUEST and len(data) > HEADER.size and not reader.pending:
-                kind, rid, size = HEADER.unpack_from(data)
-                if len(data) == HEADER.size + size:  # a step's record, whole in one read: no buffering
-                    line = Record(kind, rid, data[HEADER.size:])
-            if line is None:
-                try:
-                    reader.feed(data)
-                except ProtocolError:
-                    return
-                continue
-        if isinstance(line, Record):  # a scenario step: one record in, one out (or JSON)
+                _, rid, size = HEADER.unpack_from(data)
+                if len(data) == HEADER.size + size:  # a step's record whole in one read, as nearly all are
+                    try:
+                        answer = worker.step(REQUEST, rid, data, HEADER.size)
+                    except ProtocolError:
+                        return
+                    _flush_student_output()
+                    _write_all(fd_out, answer)
+                    continue
             try:
-                data = worker.step(line)
+                reader.feed(data)
+            except ProtocolError:
+                return
+            continue
+        if isinstance(line, Record):  # a step's record that came in parts
+            try:
+                answer = worker.step(line.kind, line.rid, line.payload, 0)
             except ProtocolError:
                 return
             _flush_student_output()
-            _write_all(fd_out, data)
+            _write_all(fd_out, answer)
             continue
         try:
             request = decode_request(line)

@@ -64,6 +64,7 @@ EXPOSED: tuple[str, ...] = (
     "grader/inside/probes_week7.py",
     "grader/inside/probing.py",
     "grader/inside/protocol.py",
+    "grader/inside/record_codec.py",
     "grader/inside/rlimits.py",
     "grader/inside/seccomp.py",
     "grader/inside/shorten.py",
