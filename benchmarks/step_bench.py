@@ -4,6 +4,9 @@ two-process step and the one-process step, all in one run (issue 32).
     python benchmarks/step_bench.py [--weeks 3 4 6] [--repeat 5] [--sandbox auto|bwrap|subprocess]
                                     [--against DIR]
 
+Each week's line also splits the step and the ideal by process (the grader's thread and the worker, the
+ideal's parent and child) and says how far each side is above the ideal's.
+
 Per week, the week's solutions run the week's `simiam run` scenario (its world, start, settings and length),
 and each figure is the CPU of every process taking part, read from /proc/*/schedstat (nanoseconds on a
 CPU) over steps 2..N of the run (the first step starts the brain), divided by the steps; best of `--repeat`:
@@ -12,6 +15,10 @@ CPU) over steps 2..N of the run (the first step starts the brain), divided by th
 - ideal: a fresh-interpreter child runs the real brain (LocalBrain) on the same readings, the parent the
   real trusted step (the Simulator with the recorded answers, validation and record), one byte each way
   on a pipe, both on one core: what any two-process design costs at least;
+- record floor: as the ideal, but the readings go as their record and the child unpacks them into the
+  dict the brain reads, and answers with the two wheel speeds in a record as long as the solution's real
+  answer records (the parent unpacks the speeds): what any design of step records costs at least, before
+  the rest of the answer is packed, checked and read;
 - one process: the Simulator with LocalBrain in this thread.
 `--against DIR` also measures the step of another checkout (e.g. `git archive BASE | tar -x -C DIR`),
 alternating with this one, so that an A/B holds under the same load. The load is printed before and
@@ -23,6 +30,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import struct
 import subprocess
 import sys
 import tempfile
@@ -30,6 +38,7 @@ from pathlib import Path
 from typing import Any
 
 import simiam  # noqa: F401  (before numpy: it pins the BLAS kernel)
+from grader.inside.step_record import StepLayout, layout_for
 from grader.sandbox.same_core import SameCore
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
@@ -41,25 +50,37 @@ from simiam.world import load_world
 
 ROOT = Path(__file__).resolve().parents[1]
 
-# The ideal step's child: the real brain on the recorded readings, one byte in, one byte out.
+# The child of the ideal step and of the record floor: the real brain.
+# ideal: on the recorded readings, one byte in, one byte out;
+# floor: on the readings record the parent sends (unpacked into the dict the brain reads), answering with
+# its two wheel speeds packed in a record as long as the solution's answer records.
 _CHILD = """
-import json, os, sys
+import json, os, struct, sys
 import simiam
 from simiam.control.local_brain import LocalBrain
 from simiam.course.loader import load_submission
 from simiam.course.weeks import get_week
 week_n, folder, readings_file, cpu = int(sys.argv[1]), sys.argv[2], sys.argv[3], int(sys.argv[4])
+mode, size = sys.argv[5], int(sys.argv[6])
 if cpu >= 0:
     os.sched_setaffinity(0, {cpu})
 week = get_week(week_n)
 readings = json.load(open(readings_file))
 brain = LocalBrain(load_submission(folder, week), week, start=None)
 os.write(1, b"r")
-for r in readings:
-    if os.read(0, 1) != b"s":
-        break
-    brain.step(r)
-    os.write(1, b"a")
+if mode == "ideal":
+    for r in readings:
+        if os.read(0, 1) != b"s":
+            break
+        brain.step(r)
+        os.write(1, b"a")
+else:
+    unpack = struct.Struct(f"<9x2d2q{len(readings[0]['ir_raw'])}q").unpack  # past the 9-byte header
+    pack, pad = struct.Struct("<2d").pack, bytes(size - 16)
+    while data := os.read(0, 65536):
+        t, dt, right, left, *ir_raw = unpack(data)
+        answer = brain.step({"t": t, "dt": dt, "ticks": [right, left], "ir_raw": ir_raw})
+        os.write(1, pack(answer["vel_r"], answer["vel_l"]) + pad)
 """
 
 
@@ -86,6 +107,24 @@ class Recorder:
         self.readings.append({k: list(v) if isinstance(v, list) else v for k, v in readings.items()})
         answer = self.brain.step(readings)
         self.answers.append(answer)
+        return answer
+
+
+class FloorBrain:
+    """The parent's side of the record floor: the readings as their record, the answer's speeds unpacked
+    from the child's record; the recorded answer (the rest of the answer is not decoded: a floor)."""
+
+    def __init__(self, answers: list[Any], to_child: int, from_child: int, layout: StepLayout) -> None:
+        self.answers, self.k, self.w, self.r, self.layout = answers, -1, to_child, from_child, layout
+        self.speeds = struct.Struct("<2d").unpack_from
+
+    def step(self, readings: dict) -> Any:
+        self.k += 1
+        os.write(self.w, self.layout.encode_readings(self.k, readings))  # type: ignore[arg-type]
+        vel_r, vel_l = self.speeds(os.read(self.r, 65536))
+        answer = self.answers[self.k]
+        if (vel_r, vel_l) != (answer["vel_r"], answer["vel_l"]):
+            raise SystemExit("the record floor's child answered other speeds than the recorded run")
         return answer
 
 
@@ -139,20 +178,28 @@ def one_process(week_n: int, folder: Path) -> float:
     return us
 
 
-def ideal(week_n: int, folder: Path, recorder: Recorder) -> list[float]:
-    """[the parent's, the child's] us of CPU per step."""
+def ideal(week_n: int, folder: Path, recorder: Recorder, floor: bool = False) -> list[float]:
+    """[the parent's, the child's] us of CPU per step: the ideal step, or with `floor` the record floor
+    (the readings as a record each way, the answer's two speeds back in a record as long as the real
+    ones: what any design of records must do at least)."""
+    week = get_week(week_n)
+    layout = layout_for(week_signals(week), len(week.spec.ir_mounts))
+    size = len(layout.encode_answer(0, recorder.answers[0]) or b"")
     with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
         json.dump(recorder.readings, f)
     try:
         with SameCore() as cpu:
             child = subprocess.Popen([sys.executable, "-c", _CHILD, str(week_n), str(folder), f.name,
-                                      str(-1 if cpu is None else cpu)],
+                                      str(-1 if cpu is None else cpu), "floor" if floor else "ideal",
+                                      str(size)],
                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE)
             assert child.stdin is not None and child.stdout is not None
             to_child, from_child = child.stdin.fileno(), child.stdout.fileno()
             if os.read(from_child, 1) != b"r":
                 raise SystemExit("the ideal step's child did not start")
-            sim, n = _simulator(week_n, OneByteBrain(recorder.answers, to_child, from_child))
+            brain = FloorBrain(recorder.answers, to_child, from_child, layout) if floor \
+                else OneByteBrain(recorder.answers, to_child, from_child)
+            sim, n = _simulator(week_n, brain)
             us = _steps(sim, min(n, len(recorder.answers)), ["thread-self", child.pid])
             child.stdin.close()
             child.wait()
@@ -197,17 +244,19 @@ def main(argv: list[str] | None = None) -> int:
         folder = ROOT / "solutions" / f"week{week_n}"
         recorder = record(week_n, folder)
         one = min(one_process(week_n, folder) for _ in range(args.repeat))
-        ideals, steps, others = [], [], []
+        ideals, floors, steps, others = [], [], [], []
         for _ in range(args.repeat):  # alternating, so that each sees the same load
             ideals.append(ideal(week_n, folder, recorder))
+            floors.append(ideal(week_n, folder, recorder, floor=True))
             steps.append(channel_step(week_n, folder, args.sandbox))
             if args.against:
                 others.append(_against(args.against, week_n, args.sandbox))
         (parent, child), (grader, worker) = min(ideals, key=sum), min(steps, key=sum)
-        best_ideal, best_step = parent + child, grader + worker
+        best_ideal, best_step, floor = parent + child, grader + worker, min(map(sum, floors))
         line = (f"week{week_n} ({len(recorder.answers)} steps): step {best_step:.1f} us "
                 f"= {best_step / best_ideal:.2f}x ideal, {best_step / one:.1f}x one process; "
                 f"ideal two-process {best_ideal:.1f} us = {best_ideal / one:.1f}x one process; "
+                f"record floor {floor:.1f} us = {floor / best_ideal:.2f}x ideal; "
                 f"one process {one:.1f} us (best of {args.repeat}; CPU of both processes per step); "
                 f"split: step grader {grader:.1f} + worker {worker:.1f}, ideal parent {parent:.1f} + child "
                 f"{child:.1f} (above the ideal: grader {grader - parent:+.1f}, worker {worker - child:+.1f})")

@@ -46,7 +46,7 @@ from grader.sandbox.errors import MachineStalled, StudentTimeout, WorkerDied
 from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
 from grader.sandbox.leftovers import remove_files_of, remove_ipc_of
 from grader.sandbox.output import CappedOutput
-from grader.sandbox.worker_clock import FIRST_LOOK, MACHINE, STUDENT, CallClock
+from grader.sandbox.worker_clock import MACHINE, STUDENT, CallClock
 
 DUMP_WAIT_SECONDS = 0.25   # how long a timed-out worker gets to write its stack dump before the kill
 DUMP_IDLE_SECONDS = 0.02
@@ -158,14 +158,12 @@ class WorkerProcess:
         if frame is None:  # readings the layout cannot hold: the JSON request, answered in JSON
             return self.request("brain_step", {"readings": readings}, timeout)
         self._next_id = rid + 1
-        began = time.monotonic()
         try:
             self._write(frame)
         except OSError:
             self._die("it stopped reading requests")
-        # An answer within FIRST_LOOK is never judged (worker_clock): the step's clock is made only when
-        # its wait goes on, or when the machine held the grader up past that already (the general wait)
-        wait = min(FIRST_LOOK, timeout) - (time.monotonic() - began)
+        clock = self._clock(self.host_pid, timeout)
+        wait = clock.next_wait()      # 0: already past its bound (a stalled machine): the general wait judges
         if wait > 0 and self._resp_r >= 0 and not self._reader.pending and \
                 self._answers.poll(int(wait * 1000) + 1):
             data = os.read(self._resp_r, 1 << 16)
@@ -177,11 +175,10 @@ class WorkerProcess:
                     except ProtocolError as exc:
                         self._die(f"it broke the protocol ({exc})")
             self._take(data)
-        clock = self._clock(self.host_pid, timeout, began)
         return self._receive(rid, clock, "brain_step", layout)
 
-    def _clock(self, pid: int | None, timeout: float, began: float | None = None) -> CallClock:
-        self.last_clock = CallClock(pid, timeout, self.stall_seconds, began)
+    def _clock(self, pid: int | None, timeout: float) -> CallClock:
+        self.last_clock = CallClock(pid, timeout, self.stall_seconds)
         return self.last_clock
 
     def no_more_answers(self) -> None:

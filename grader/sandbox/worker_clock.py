@@ -117,12 +117,11 @@ class CallClock:
 
     `pid`: the worker's host pid (the root of its tree); None, or one that cannot be read: blind."""
 
-    def __init__(self, pid: int | None, limit: float, stall_seconds: float, began: float | None = None
-                 ) -> None:
+    def __init__(self, pid: int | None, limit: float, stall_seconds: float) -> None:
         self.limit = limit
         # never within reach of the limit itself (the looks read the own time up to LOOK_EVERY late)
         self.stall_seconds = max(stall_seconds, 2 * limit + 1.0)
-        self.began = self._at = time.monotonic() if began is None else began  # when the wait began
+        self.began = self._at = time.monotonic()
         self.pid = pid
         self.blind = False
         self.looked = False
