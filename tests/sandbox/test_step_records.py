@@ -68,7 +68,9 @@ def test_an_honest_answer_decodes_into_what_json_gives(week):
     layout = _layout(week)
     for absent in (frozenset(), frozenset(layout.names[::2]), frozenset(layout.names)):
         answer = _answer(layout, absent)
-        assert layout.decode_answer(_payload(layout, answer)) == _via_json(answer) == answer
+        decoded = layout.decode_answer(_payload(layout, answer))
+        assert decoded == _via_json(answer) == answer
+        assert list(decoded["debug"]) == list(_via_json(answer)["debug"])  # the declared order, as JSON's
     frame = layout.encode_readings(3, READINGS)
     assert frame is not None and layout.decode_readings(frame[HEADER.size:]) == READINGS
 
