@@ -2,6 +2,7 @@
 callgrind: a figure no load changes (issue 32; step_bench.py measures the whole step, under the load).
 
     python benchmarks/step_codec.py [--weeks 3 6] [--steps 2000]
+    python benchmarks/step_codec.py --hot [--weeks 3 6]
 
 For each week, one step's readings and the week's solution's answer (recorded from a LocalBrain run of the
 week's `simiam run` scenario) go both ways through each codec, in one process: the grader's encoding of
@@ -11,6 +12,10 @@ the LineReader's split + decode + check_message; with records: grader.inside.ste
 FrameReader). Each codec runs under `valgrind --tool=callgrind` twice, for `steps` and 3 x `steps`
 steps; the difference over 2 x `steps` is its instructions per step, start-up excluded. System calls,
 the brain and the simulator are not in it.
+
+`--hot` times each part of the records' codec instead (timeit, best of 7, one process, its code and data
+warm in the caches): what a part costs at best, to set beside what the step costs where the two processes
+take turns on one core (step_bench.py).
 """
 
 from __future__ import annotations
@@ -62,6 +67,34 @@ def _loop(week_n: int, codec: str, steps: int) -> None:
     assert request["ticks"] == readings["ticks"]
 
 
+def _hot(week_n: int) -> dict[str, float]:
+    """us per call of each part of the records' codec, warm (see the module docstring)."""
+    import timeit
+
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from step_bench import record
+
+    from grader.inside.step_record import HEADER, layout_for
+    from simiam.course.weeks import get_week
+    from simiam.signals import week_signals
+
+    recorder = record(week_n, ROOT / "solutions" / f"week{week_n}")
+    middle = len(recorder.answers) // 2
+    readings, answer = recorder.readings[middle], recorder.answers[middle]
+    week = get_week(week_n)
+    layout = layout_for(week_signals(week), len(week.spec.ir_mounts))
+    request, reply = layout.encode_readings(1, readings), layout.encode_answer(1, answer)
+    assert request is not None and reply is not None, "the solution's step is not a record"
+    parts = {"encode_readings": lambda: layout.encode_readings(1, readings),
+             "decode_readings": lambda: layout.decode_readings(request, HEADER.size),
+             "encode_answer": lambda: layout.encode_answer(1, answer),
+             "decode_answer": lambda: layout.decode_answer(reply[HEADER.size:]),
+             "struct_unpack_answer": lambda: layout.answer.unpack_from(reply, HEADER.size)}
+    n = 20000
+    return {name: round(min(timeit.repeat(part, number=n, repeat=7)) / n * 1e6, 2)
+            for name, part in parts.items()}
+
+
 def _instructions(week_n: int, codec: str, steps: int) -> int:
     done = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null", sys.executable,
                            __file__, "--inner", str(week_n), codec, str(steps)],
@@ -73,8 +106,13 @@ def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--weeks", type=int, nargs="+", default=[3, 6])
     p.add_argument("--steps", type=int, default=2000)
+    p.add_argument("--hot", action="store_true", help="time the records' codec warm (us) instead")
     p.add_argument("--inner", nargs=3, help=argparse.SUPPRESS)
     args = p.parse_args(argv)
+    if args.hot:
+        for week_n in args.weeks:
+            print(json.dumps({"week": week_n, "us": _hot(week_n)}), flush=True)
+        return 0
     if args.inner:
         _loop(int(args.inner[0]), args.inner[1], int(args.inner[2]))
         return 0
