@@ -75,10 +75,12 @@ if mode == "ideal":
         brain.step(r)
         os.write(1, b"a")
 else:
-    unpack = struct.Struct(f"<9x2d2q{len(readings[0]['ir_raw'])}q").unpack  # past the 9-byte header
+    from grader.inside.step_record import HEADER, layout_for
+    from simiam.signals import week_signals
+    unpack = layout_for(week_signals(week), len(week.spec.ir_mounts)).readings.unpack_from
     pack, pad = struct.Struct("<2d").pack, bytes(size - 16)
     while data := os.read(0, 65536):
-        t, dt, right, left, *ir_raw = unpack(data)
+        t, dt, right, left, *ir_raw = unpack(data, HEADER.size)
         answer = brain.step({"t": t, "dt": dt, "ticks": [right, left], "ir_raw": ir_raw})
         os.write(1, pack(answer["vel_r"], answer["vel_l"]) + pad)
 """

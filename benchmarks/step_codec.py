@@ -27,26 +27,35 @@ import shutil
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _loop(week_n: int, codec: str, steps: int) -> None:
-    """Run inside valgrind: `steps` round trips of one step through `codec`."""
+def _sample(week_n: int) -> tuple[dict, dict, Any]:
+    """One step's readings and the week's solution's answer (the middle step of a LocalBrain run of the
+    week's `simiam run` scenario), and the week's step layout."""
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from step_bench import record
 
-    from grader.inside.answer_bounds import check_message, weigh
-    from grader.inside.protocol import FrameReader, decode, decode_request, encode, encode_request, to_json
-    from grader.inside.step_record import HEADER, layout_for
+    from grader.inside.step_record import layout_for
     from simiam.course.weeks import get_week
     from simiam.signals import week_signals
 
     recorder = record(week_n, ROOT / "solutions" / f"week{week_n}")
     middle = len(recorder.answers) // 2
-    readings, answer = recorder.readings[middle], recorder.answers[middle]
     week = get_week(week_n)
-    layout = layout_for(week_signals(week), len(week.spec.ir_mounts))
+    return (recorder.readings[middle], recorder.answers[middle],
+            layout_for(week_signals(week), len(week.spec.ir_mounts)))
+
+
+def _loop(week_n: int, codec: str, steps: int) -> None:
+    """Run inside valgrind: `steps` round trips of one step through `codec`."""
+    from grader.inside.answer_bounds import check_message, weigh
+    from grader.inside.protocol import FrameReader, decode, decode_request, encode, encode_request, to_json
+    from grader.inside.step_record import HEADER
+
+    readings, answer, layout = _sample(week_n)
     if codec == "json":
         for k in range(steps):
             line = encode_request({"readings": readings, "id": k, "op": "brain_step"})
@@ -71,18 +80,9 @@ def _hot(week_n: int) -> dict[str, float]:
     """us per call of each part of the records' codec, warm (see the module docstring)."""
     import timeit
 
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    from step_bench import record
+    from grader.inside.step_record import HEADER
 
-    from grader.inside.step_record import HEADER, layout_for
-    from simiam.course.weeks import get_week
-    from simiam.signals import week_signals
-
-    recorder = record(week_n, ROOT / "solutions" / f"week{week_n}")
-    middle = len(recorder.answers) // 2
-    readings, answer = recorder.readings[middle], recorder.answers[middle]
-    week = get_week(week_n)
-    layout = layout_for(week_signals(week), len(week.spec.ir_mounts))
+    readings, answer, layout = _sample(week_n)
     request, reply = layout.encode_readings(1, readings), layout.encode_answer(1, answer)
     assert request is not None and reply is not None, "the solution's step is not a record"
     parts = {"encode_readings": lambda: layout.encode_readings(1, readings),

@@ -251,12 +251,8 @@ def serve(config: dict) -> None:
             if data[0] == REQUEST and len(data) > HEADER.size and not reader.pending:
                 _, rid, size = HEADER.unpack_from(data)
                 if len(data) == HEADER.size + size:  # a step's record whole in one read, as nearly all are
-                    try:
-                        answer = worker.step(REQUEST, rid, data, HEADER.size)
-                    except ProtocolError:
+                    if not _answer_step(worker, fd_out, REQUEST, rid, data, HEADER.size):
                         return
-                    _flush_student_output()
-                    _write_all(fd_out, answer)
                     continue
             try:
                 reader.feed(data)
@@ -264,12 +260,8 @@ def serve(config: dict) -> None:
                 return
             continue
         if isinstance(line, Record):  # a step's record that came in parts
-            try:
-                answer = worker.step(line.kind, line.rid, line.payload, 0)
-            except ProtocolError:
+            if not _answer_step(worker, fd_out, line.kind, line.rid, line.payload, 0):
                 return
-            _flush_student_output()
-            _write_all(fd_out, answer)
             continue
         try:
             request = decode_request(line)
@@ -282,6 +274,18 @@ def serve(config: dict) -> None:
             except (ValueError, TypeError):
                 _send(fd_out, {"id": response.get("id"), "ok": False,
                                "error": {"type": "NotJSON", "message": "the answer could not be encoded"}})
+
+
+def _answer_step(worker: _Worker, fd_out: int, kind: int, rid: int, data: bytes, at: int) -> bool:
+    """Answer a step's record (its payload from `data[at:]`); False if it broke the protocol (the
+    worker then ends)."""
+    try:
+        answer = worker.step(kind, rid, data, at)
+    except ProtocolError:
+        return False
+    _flush_student_output()
+    _write_all(fd_out, answer)
+    return True
 
 
 def _flush_student_output() -> None:

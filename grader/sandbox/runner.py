@@ -170,10 +170,7 @@ class WorkerProcess:
             if len(data) > HEADER.size and data[0] == ANSWER:
                 _, got, size = HEADER.unpack_from(data)
                 if got == rid and len(data) == HEADER.size + size:
-                    try:
-                        return {"id": rid, "ok": True, "value": layout.decode_answer(data[HEADER.size:])}
-                    except ProtocolError as exc:
-                        self._die(f"it broke the protocol ({exc})")
+                    return self._record_answer(layout, rid, data[HEADER.size:])
             self._take(data)
         return self._receive(rid, clock, "brain_step", layout)
 
@@ -211,10 +208,7 @@ class WorkerProcess:
                     self._die("it broke the protocol (a step record nobody asked for)")
                 if line.rid != rid:
                     self._die("it sent an answer that does not match the question")
-                try:
-                    return {"id": rid, "ok": True, "value": layout.decode_answer(line.payload)}
-                except ProtocolError as exc:
-                    self._die(f"it broke the protocol ({exc})")
+                return self._record_answer(layout, rid, line.payload)
             if line is not None:
                 try:
                     message = decode(line)
@@ -244,6 +238,14 @@ class WorkerProcess:
             data = self._read_answers(left)
             if data is not None:
                 self._take(data)
+
+    def _record_answer(self, layout: StepLayout, rid: int, payload: bytes) -> dict:
+        """The response to step `rid` from its answer record: decoded and checked (step_record), or the
+        worker ended for a record that is not exactly of the layout."""
+        try:
+            return {"id": rid, "ok": True, "value": layout.decode_answer(payload)}
+        except ProtocolError as exc:
+            self._die(f"it broke the protocol ({exc})")
 
     def _take(self, data: bytes) -> None:
         """Hand what the worker wrote to the frame reader: its end, or a broken frame, ends the worker."""
