@@ -25,28 +25,36 @@ from simiam.signals import declared
 
 Encoder = Callable[[int, Any], "bytes | None"]
 Decoder = Callable[[bytes], dict]
+FrameDecoder = Callable[[bytes, int], "dict | None"]
 
 
 def source(layout: Any) -> str:
-    """The Python source of `layout`'s encoder and decoder (functions `encode` and `decode`)."""
-    return _encoder(layout) + "\n\n" + _decoder(layout)
+    """The Python source of `layout`'s encoder and decoders (functions `encode`, `decode` and
+    `decode_frame`)."""
+    return "\n\n".join((_encoder(layout), _decoder(layout, framed=False), _decoder(layout, framed=True)))
 
 
-def compile_codec(layout: Any, caps: dict[str, Any]) -> tuple[Encoder, Decoder]:
-    """`layout`'s encoder and decoder (see the module docstring); `caps`: the record's STATE_BYTES,
+def compile_codec(layout: Any, caps: dict[str, Any]) -> tuple[Encoder, Decoder, FrameDecoder]:
+    """`layout`'s encoder and decoders (see the module docstring); `caps`: the record's STATE_BYTES,
     LABEL_BYTES, MAX_INT64 and BITS (the bytes a presence or flag byte may be)."""
-    names = layout.names
-    space: dict[str, Any] = {
+    space = namespace(layout, caps)
+    exec(compile(source(layout), f"<step record codec {','.join(layout.names)} {layout.n_ir}>", "exec"),  # noqa: S102
+         space)
+    return space["encode"], space["decode"], space["decode_frame"]
+
+
+def namespace(layout: Any, caps: dict[str, Any]) -> dict[str, Any]:
+    """The names the generated code of `layout` reads (its structs, sizes and caps)."""
+    framed = struct.Struct(HEADER.format + layout.answer.format.lstrip("<"))  # header and fixed part
+    return {
         "ProtocolError": ProtocolError, "UnicodeDecodeError": UnicodeDecodeError,
-        # header and fixed part in one struct: one pack per answer
-        "PACK": struct.Struct(HEADER.format + layout.answer.format.lstrip("<")).pack,
+        "PACK": framed.pack,  # one pack per answer
         "UNPACK": layout.answer.unpack_from, "ANSWER": ANSWER, "FIXED": layout.answer.size,
+        "UNPACK_FRAME": framed.unpack_from, "HEAD": HEADER.size,
         "MAX": layout.max_answer, **caps, "ALL": layout._all_present,  # noqa: SLF001
-        "FLOATS": {float}, "NAMES": names,
-        "ZERO": tuple(layout._zero[name] for name in names),  # noqa: SLF001
+        "FLOATS": {float}, "NAMES": layout.names,
+        "ZERO": tuple(layout._zero[name] for name in layout.names),  # noqa: SLF001
     }
-    exec(compile(source(layout), f"<step record codec {','.join(names)} {layout.n_ir}>", "exec"), space)  # noqa: S102
-    return space["encode"], space["decode"]
 
 
 def _kinds(layout: Any) -> list[tuple[int, str, str, int]]:
@@ -55,8 +63,7 @@ def _kinds(layout: Any) -> list[tuple[int, str, str, int]]:
 
 
 def _encoder(layout: Any) -> str:
-    signals = _kinds(layout)
-    n = len(signals)
+    n = len(layout.names)
     lines = [
         "def encode(rid, answer):",
         "    if type(answer) is not dict:",
@@ -66,13 +73,25 @@ def _encoder(layout: Any) -> str:
         "    if type(est) is not list or len(est) != 3 or type(state) is not str \\",
         f"            or type(debug) is not dict or len(debug) != {n}:",
         "        return None",
+        "    vel_r, vel_l = get('vel_r'), get('vel_l')",
     ]
     if n:
         lines += ["    try:",
-                  "        " + "; ".join(f"v{i} = debug[{name!r}]" for i, name, _, _ in signals),
+                  "        " + "; ".join(f"v{i} = debug[{name!r}]" for i, name in enumerate(layout.names)),
                   "    except KeyError:",
-                  "        return None",
-                  "    presence = ALL",
+                  "        return None"]
+    return "\n".join(lines + pack_lines(layout, "return None"))
+
+
+def pack_lines(layout: Any, fail: str) -> list[str]:
+    """The encoder's checks and packing (body lines of a function): from `vel_r`, `vel_l`, `est` (a list of
+    three), `state` (a str) and `v0`, `v1`, ... (each signal's value or None, in the declared order), the
+    record `PACK` gives; `fail` (a statement) wherever a value is not of its canonical type. The `v`s of
+    absent signals are set to their slot's zeros on the way."""
+    signals = _kinds(layout)
+    lines = []
+    if signals:
+        lines += ["    presence = ALL",
                   "    if " + " or ".join(f"v{i} is None" for i, *_ in signals) + ":",
                   "        presence = bytes((" + "".join(f"v{i} is not None, " for i, *_ in signals) + "))"]
         lines += [f"        if v{i} is None:\n            v{i} = ZERO[{i}]" for i, *_ in signals]
@@ -84,59 +103,78 @@ def _encoder(layout: Any) -> str:
         if kind == "scalar":
             grouped[kind].append(f"v{i}")
         elif kind == "vector2":
-            lines += [f"    if type(v{i}) is not list or len(v{i}) != 2:", "        return None"]
+            lines += [f"    if type(v{i}) is not list or len(v{i}) != 2:", f"        {fail}"]
             grouped[kind].append(f"*v{i}")
         elif kind == "points":
-            lines += [f"    if type(v{i}) is not list or len(v{i}) != 2:", "        return None",
+            lines += [f"    if type(v{i}) is not list or len(v{i}) != 2:", f"        {fail}",
                       f"    a{i}, b{i} = v{i}",
                       f"    if type(a{i}) is not list or type(b{i}) is not list or len(a{i}) != {cols} "
                       f"or len(b{i}) != {cols}:",
-                      "        return None"]
+                      f"        {fail}"]
             grouped[kind] += [f"*a{i}", f"*b{i}"]
         elif kind == "count":
             lines += [f"    if type(v{i}) is not int or not -MAX_INT64 <= v{i} <= MAX_INT64:",
-                      "        return None"]
+                      f"        {fail}"]
             counts.append(f"v{i}")
         elif kind == "flag":
-            lines += [f"    if type(v{i}) is not bool:", "        return None"]
+            lines += [f"    if type(v{i}) is not bool:", f"        {fail}"]
             flags.append(f"v{i}")
         else:  # label
-            lines += [f"    if type(v{i}) is not str:", "        return None"]
+            lines += [f"    if type(v{i}) is not str:", f"        {fail}"]
             labels.append(i)
-    floats = ["get('vel_r')", "get('vel_l')", "*est", *grouped["scalar"], *grouped["vector2"],
-              *grouped["points"]]
+    floats = ["vel_r", "vel_l", "*est", *grouped["scalar"], *grouped["vector2"], *grouped["points"]]
     # every double of the record at once: the command, the estimate, the scalars, vectors and points
     lines += [f"    floats = ({', '.join(floats)},)",
               "    if set(map(type, floats)) != FLOATS:",
-              "        return None",
+              f"        {fail}",
               "    try:",
               "        text = state.encode()"]
     lines += [f"        t{i} = v{i}.encode()" for i in labels]
     lines += ["    except UnicodeEncodeError:  # a lone surrogate",
-              "        return None",
+              f"        {fail}",
               "    if len(text) > STATE_BYTES" + "".join(f" or len(t{i}) > LABEL_BYTES" for i in labels)
               + ":",
-              "        return None"]
+              f"        {fail}"]
     size = "FIXED + len(text)" + "".join(f" + len(t{i})" for i in labels)
     fields = ["ANSWER", "rid", size, "*floats[:5]", "len(text)", "presence", "*floats[5:]", *counts,
               f"bytes(({''.join(f + ', ' for f in flags)}))", *(f"len(t{i})" for i in labels)]
     tail = " + text" + "".join(f" + t{i}" for i in labels)
     lines += [f"    return PACK({', '.join(fields)}){tail}"]
-    return "\n".join(lines)
+    return lines
 
 
-def _decoder(layout: Any) -> str:
+def _decoder(layout: Any, framed: bool) -> str:
+    """`decode(payload)`, or with `framed` `decode_frame(data, rid)`: the same checks and values on a whole
+    frame whose header is unpacked with the fixed part (None where `data` is not exactly one answer record
+    of request `rid` at least as long as the fixed part: the caller reads it frame by frame instead)."""
     signals = _kinds(layout)
-    flags_at, labels_at = layout._flags_at, layout._labels_at  # noqa: SLF001
-    lines = [
-        "def decode(payload):",
-        "    size = len(payload)",
-        "    if not FIXED <= size <= MAX:",
+    h = 3 if framed else 0                  # the header's fields come first in a framed unpacking
+    data, fixed_end = ("data", "HEAD + FIXED") if framed else ("payload", "FIXED")  # the strings' start
+    flags_at, labels_at = layout._flags_at + h, layout._labels_at + h  # noqa: SLF001
+    if framed:
+        lines = [
+            "def decode_frame(data, rid):",
+            "    size = len(data) - HEAD",
+            "    if size < FIXED:",
+            "        return None",
+            "    raw = UNPACK_FRAME(data)",
+            "    if raw[0] != ANSWER or raw[1] != rid or raw[2] != size:",
+            "        return None",
+            "    if size > MAX:",
+        ]
+    else:
+        lines = [
+            "def decode(payload):",
+            "    size = len(payload)",
+            "    if not FIXED <= size <= MAX:",
+        ]
+    lines += [
         "        raise ProtocolError(f'a step record of {size} bytes, where this run\\'s layout takes '",
         "                            f'{FIXED} to {MAX}')",
-        "    raw = UNPACK(payload)",
-        "    state_len, presence = raw[5], raw[6]",
     ]
+    if not framed:
+        lines += ["    raw = UNPACK(payload)"]
+    lines += [f"    state_len, presence = raw[{5 + h}], raw[{6 + h}]"]
     bad_bits = "presence.translate(None, BITS)"
     if layout._flags:  # noqa: SLF001
         bad_bits += f" or raw[{flags_at}].translate(None, BITS)"
@@ -157,14 +195,14 @@ def _decoder(layout: Any) -> str:
     lines += ["    if taken != size:",
               "        raise ProtocolError(f'a step record of {size} bytes whose fields take {taken}')",
               "    # the frame is whole and well-formed: now its values",
-              "    end = FIXED + state_len",
+              f"    end = {fixed_end} + state_len",
               "    try:",
-              "        state = str(payload[FIXED:end], 'utf-8')"]
+              f"        state = str({data}[{fixed_end}:end], 'utf-8')"]
     for i, _at in labels:
-        lines += [f"        t{i} = str(payload[end:end + n{i}], 'utf-8')", f"        end += n{i}"]
+        lines += [f"        t{i} = str({data}[end:end + n{i}], 'utf-8')", f"        end += n{i}"]
     lines += ["    except UnicodeDecodeError:",
               "        raise ProtocolError('a string in a step record that is not UTF-8') from None"]
-    at, count_at, flag = layout._floats, layout._counts_at, 0  # noqa: SLF001
+    at, count_at, flag = layout._floats + h, layout._counts_at + h, 0  # noqa: SLF001
     where = {}  # the first double of each scalar, vector and points signal: grouped by kind in the record
     for group, width in (("scalar", 1), ("vector2", 2), ("points", 2)):
         for i, _name, kind, cols in signals:
@@ -192,6 +230,6 @@ def _decoder(layout: Any) -> str:
               "        for name, present in zip(NAMES, presence):",
               "            if not present:",
               "                debug[name] = None",
-              "    return {'vel_r': raw[0], 'vel_l': raw[1], 'estimate': [raw[2], raw[3], raw[4]], "
-              "'state': state, 'debug': debug}"]
+              f"    return {{'vel_r': raw[{h}], 'vel_l': raw[{h + 1}], "
+              f"'estimate': [raw[{h + 2}], raw[{h + 3}], raw[{h + 4}]], 'state': state, 'debug': debug}}"]
     return "\n".join(lines)

@@ -30,6 +30,7 @@ from typing import Any
 
 from grader.inside.protocol import HEADER, REQUEST, ProtocolError
 from grader.inside.record_codec import compile_codec
+from grader.inside.record_writer import compile_writer
 from simiam.signals import KINDS, declared
 
 STATE_BYTES = 320  # UTF-8 bytes of a state name in a record (4 per character of simiam.brain.STATE_CHARS)
@@ -49,6 +50,7 @@ class StepLayout:
         self.names = tuple(names)
         self.n_ir = int(n_ir)
         self.readings = struct.Struct(f"<2d2q{self.n_ir}q")
+        self._request = struct.Struct(HEADER.format + self.readings.format.lstrip("<"))  # header and readings
         signals = declared(self.names)
         group = {kind: tuple(s for s in signals if s.kind == kind) for kind in KINDS}
         self._scalars = tuple(s.name for s in group["scalar"])
@@ -76,8 +78,9 @@ class StepLayout:
         self._label_presence = tuple(self.names.index(name) for name in self._labels)
         self._all_present = b"\x01" * len(signals)
         self.max_answer = self.answer.size + STATE_BYTES + LABEL_BYTES * len(self._labels)
-        caps = {"STATE_BYTES": STATE_BYTES, "LABEL_BYTES": LABEL_BYTES, "MAX_INT64": MAX_INT64, "BITS": _BITS}
-        self._encode, self._decode = compile_codec(self, caps)  # straight-line code for this layout
+        self._caps = {"STATE_BYTES": STATE_BYTES, "LABEL_BYTES": LABEL_BYTES, "MAX_INT64": MAX_INT64,
+                      "BITS": _BITS}
+        self._encode, self._decode, self._decode_frame = compile_codec(self, self._caps)  # straight-line code
 
     def to_json(self) -> dict:
         """What brain_start sends: enough for the worker to build the same layout."""
@@ -90,10 +93,10 @@ class StepLayout:
         if type(t) is not float or type(dt) is not float:
             return None
         try:
-            payload = self.readings.pack(t, dt, *readings["ticks"], *readings["ir_raw"])
+            return self._request.pack(REQUEST, rid, self.readings.size, t, dt, *readings["ticks"],
+                                      *readings["ir_raw"])
         except (struct.error, TypeError):
             return None
-        return HEADER.pack(REQUEST, rid, len(payload)) + payload
 
     def decode_readings(self, data: bytes, at: int = 0) -> dict:
         """The readings dict JSON would give, from the record's payload `data[at:]` (inside the worker)."""
@@ -108,11 +111,25 @@ class StepLayout:
         then sends JSON, as before records)."""
         return self._encode(rid, answer)
 
+    def writer(self, brain: Any) -> Callable[[int], bytes | dict]:
+        """For `brain` (a LocalBrain of this layout's signals and IR count), after its `think`: `write(rid)`
+        gives `encode_answer(rid, brain.answer())`, or `brain.answer()` where that is None, reading each
+        value once (grader.inside.record_writer)."""
+        return compile_writer(self, self._caps, brain)
+
     def decode_answer(self, payload: bytes) -> dict:
         """The answer dict JSON would give, from a record of the (untrusted) worker; ProtocolError for any
         frame that is not exactly of this layout. Every check on the frame comes before any value is
         taken from it."""
         return self._decode(payload)
+
+    def decode_frame(self, data: bytes, rid: int) -> dict | None:
+        """`decode_answer` of the record `data` holds, when `data` is exactly one whole answer record of the
+        request `rid` (its header read in the same unpacking as the fixed part: the step's common case);
+        None when it is anything else (part of a record, more than one, JSON, another id, shorter than the
+        fixed part), which the caller then reads frame by frame. The same checks in the same order and the
+        same ProtocolError as `decode_answer` for a whole record that is not exactly of this layout."""
+        return self._decode_frame(data, rid)
 
 
 _LAYOUTS: dict[tuple, StepLayout] = {}

@@ -44,6 +44,7 @@ class _Worker:
         self.sub: Any = None
         self.brain: Any = None  # the trusted framework was imported by the bootstrap (worker.py)
         self.layout: StepLayout | None = None  # the step records of the brain's run, when agreed
+        self.write: Callable[[int], bytes | dict] | None = None  # the layout's writer for this brain
 
     def submission(self) -> Any:
         if self.sub is None:
@@ -75,12 +76,15 @@ class _Worker:
         from simiam.control.local_brain import LocalBrain
         from simiam.course.weeks import get_week
 
-        self.brain = self.layout = None
+        self.brain = self.layout = self.write = None
         _join_core(request.get("cpu"))
         self.brain = LocalBrain(self.submission(), get_week(self.week), request.get("settings") or None,
                                 start=_pose(request.get("start")))
         self.layout = _agreed(request.get("record"), self.brain)
-        return None if self.layout is None else {"record": True}
+        if self.layout is None:
+            return None
+        self.write = self.layout.writer(self.brain)
+        return {"record": True}
 
     def op_brain_step(self, request: dict) -> Any:
         if self.brain is None:
@@ -108,18 +112,18 @@ class _Worker:
         """A step's readings record (kind, id, its payload from `data[at:]`), answered: a step record, or
         JSON where the answer is not of the record's canonical types or the student's code raised
         (grader.inside.step_record)."""
-        layout = self.layout
-        if kind != REQUEST or layout is None or self.brain is None:
+        layout, write = self.layout, self.write
+        if kind != REQUEST or layout is None or write is None or self.brain is None:
             raise ProtocolError("a step record before brain_start agreed on records")
         readings = layout.decode_readings(data, at)
-        try:
-            answer = self.brain.step(readings)
+        try:  # LocalBrain.step, its answer written as the record (grader.inside.record_writer)
+            self.brain.think(readings)
+            answer = write(rid)
         except BaseException as exc:  # noqa: BLE001 - as handle()
             return _encoded({"id": rid, "ok": False, "error": self.describe(exc)})
-        frame = layout.encode_answer(rid, answer)
-        if frame is not None:
-            return frame
-        response = self.respond(rid, lambda: answer)  # exactly as before records
+        if type(answer) is bytes:
+            return answer
+        response = self.respond(rid, lambda: answer)  # not a record's types: exactly as before records
         try:
             return _encoded(response)
         except (ValueError, TypeError):

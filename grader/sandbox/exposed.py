@@ -65,6 +65,7 @@ EXPOSED: tuple[str, ...] = (
     "grader/inside/probing.py",
     "grader/inside/protocol.py",
     "grader/inside/record_codec.py",
+    "grader/inside/record_writer.py",
     "grader/inside/rlimits.py",
     "grader/inside/seccomp.py",
     "grader/inside/shorten.py",

@@ -32,7 +32,6 @@ from typing import NoReturn
 from grader.inside.answer_bounds import MAX_ANSWER_BYTES, OutOfBounds, check_message
 from grader.inside.protocol import (
     ANSWER,
-    HEADER,
     MAX_MESSAGE,
     FrameReader,
     ProtocolError,
@@ -46,7 +45,7 @@ from grader.sandbox.errors import MachineStalled, StudentTimeout, WorkerDied
 from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
 from grader.sandbox.leftovers import remove_files_of, remove_ipc_of
 from grader.sandbox.output import CappedOutput
-from grader.sandbox.worker_clock import MACHINE, STUDENT, CallClock
+from grader.sandbox.worker_clock import MACHINE, STUDENT, CallClock, first_wait
 
 DUMP_WAIT_SECONDS = 0.25   # how long a timed-out worker gets to write its stack dump before the kill
 DUMP_IDLE_SECONDS = 0.02
@@ -150,7 +149,9 @@ class WorkerProcess:
     def step(self, layout: StepLayout, readings: dict, timeout: float) -> dict:
         """One scenario step: the readings as a record (grader.inside.step_record), the answer decoded
         from its record (or JSON: the worker's fallback, or the student's error), within `timeout` as
-        `receive`. The common case is one write, one poll and one read, the answer whole in that read."""
+        `receive`. The common case is one write, one poll and one read, the answer whole in that read,
+        within `first_wait` (then the worker's time is never read, so the wait's clock is made only
+        after it, for the general wait)."""
         if self.dead:
             raise WorkerDied(self.dead)
         rid = self._next_id
@@ -162,20 +163,22 @@ class WorkerProcess:
             self._write(frame)
         except OSError:
             self._die("it stopped reading requests")
-        clock = self._clock(self.host_pid, timeout)
-        wait = clock.next_wait()      # 0: already past its bound (a stalled machine): the general wait judges
+        began = time.monotonic()
+        wait = first_wait(timeout)  # 0: already past its bound (a stalled machine): the general wait judges
         if wait > 0 and self._resp_r >= 0 and not self._reader.pending and \
                 self._answers.poll(int(wait * 1000) + 1):
             data = os.read(self._resp_r, 1 << 16)
-            if len(data) > HEADER.size and data[0] == ANSWER:
-                _, got, size = HEADER.unpack_from(data)
-                if got == rid and len(data) == HEADER.size + size:
-                    return self._record_answer(layout, rid, data[HEADER.size:])
+            try:
+                value = layout.decode_frame(data, rid)
+            except ProtocolError as exc:
+                self._die(f"it broke the protocol ({exc})")
+            if value is not None:
+                return {"id": rid, "ok": True, "value": value}
             self._take(data)
-        return self._receive(rid, clock, "brain_step", layout)
+        return self._receive(rid, self._clock(self.host_pid, timeout, began), "brain_step", layout)
 
-    def _clock(self, pid: int | None, timeout: float) -> CallClock:
-        self.last_clock = CallClock(pid, timeout, self.stall_seconds)
+    def _clock(self, pid: int | None, timeout: float, began: float | None = None) -> CallClock:
+        self.last_clock = CallClock(pid, timeout, self.stall_seconds, began)
         return self.last_clock
 
     def no_more_answers(self) -> None:
@@ -188,7 +191,13 @@ class WorkerProcess:
     def _write(self, data: bytes) -> None:
         """Write first and wait only when the pipe is full (the request pipe is non-blocking): a request
         of a few hundred bytes costs one system call, and a worker that stops reading costs 5 s at most."""
-        view = memoryview(data)
+        try:
+            sent = os.write(self._req_w, data)  # nearly always all of it, at once
+        except BlockingIOError:
+            sent = 0
+        if sent == len(data):
+            return
+        view = memoryview(data)[sent:]
         while view:
             try:
                 view = view[os.write(self._req_w, view):]

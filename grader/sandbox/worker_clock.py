@@ -109,19 +109,27 @@ def _stopped(state: str) -> bool:
     return state in ("T", "t", "D")
 
 
+def first_wait(limit: float) -> float:
+    """How long a wait of `limit` seconds waits for its answer before the worker is first read."""
+    return FIRST_LOOK if FIRST_LOOK < limit else limit
+
+
 class CallClock:
     """The limit of one wait for the worker: `limit` seconds of the worker's own time (CPU and sleep),
     `stall_seconds` of wall time at most (see the module docstring). The caller waits `next_wait()`
     seconds for an answer at a time, and calls `look()` whenever that wait ran out: STUDENT (the limit is
     reached: a timeout), MACHINE (the wall bound passed first: not the student's doing) or None (wait on).
 
-    `pid`: the worker's host pid (the root of its tree); None, or one that cannot be read: blind."""
+    `pid`: the worker's host pid (the root of its tree); None, or one that cannot be read: blind. `began`:
+    when the wait began (`time.monotonic()`), if before the clock was made (a step's wait makes its clock
+    only once its first wait, `first_wait`, has passed without an answer); else now."""
 
-    def __init__(self, pid: int | None, limit: float, stall_seconds: float) -> None:
+    def __init__(self, pid: int | None, limit: float, stall_seconds: float, began: float | None = None
+                 ) -> None:
         self.limit = limit
         # never within reach of the limit itself (the looks read the own time up to LOOK_EVERY late)
         self.stall_seconds = max(stall_seconds, 2 * limit + 1.0)
-        self.began = self._at = time.monotonic()
+        self.began = self._at = time.monotonic() if began is None else began
         self.pid = pid
         self.blind = False
         self.looked = False
@@ -141,7 +149,7 @@ class CallClock:
         if self.blind:
             due = self.began + min(self.limit * BLIND_FACTOR, self.stall_seconds)
         elif not self.looked:
-            due = self.began + min(FIRST_LOOK, self.limit)
+            due = self.began + first_wait(self.limit)
         else:
             due = self._at + LOOK_EVERY
         self._asked = max(0.0, due - now)

@@ -85,11 +85,22 @@ class LocalBrain:
     def step(self, readings: Mapping[str, Any]) -> dict[str, Any]:
         """Feed one step's readings to the robot, run the supervisor once, return the command
         (simiam.brain's Readings and Command; not imported here, the worker has no simiam.brain)."""
+        self.think(readings)
+        return self.answer()
+
+    def think(self, readings: Mapping[str, Any]) -> None:
+        """The first half of `step`: feed the readings to the robot and run the supervisor once."""
         self.robot.update(readings)
         sup = self.supervisor
         sup.outputs = None
         sup.event_values = {}
         sup.execute(readings["dt"])
+
+    def answer(self) -> dict[str, Any]:
+        """The second half of `step`: the command, read from the robot and the supervisor as they are now
+        (in this order: the wheel speeds, the estimate, the state, the debug signals). The sandbox's worker
+        reads the same, in the same order, straight into its step record (grader.inside.record_writer)."""
+        sup = self.supervisor
         return {
             "vel_r": _plain(self.robot.vel_r),
             "vel_l": _plain(self.robot.vel_l),

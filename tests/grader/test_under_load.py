@@ -34,7 +34,7 @@ from grader.grading import grade_submission
 from grader.sandbox import runner
 from grader.sandbox.limits import Limits
 from grader.sandbox.session import RemoteBrain
-from grader.sandbox.worker_clock import MACHINE, CallClock
+from grader.sandbox.worker_clock import MACHINE, CallClock, first_wait
 from grader.under_load import REDOS, UNDER_LOAD
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
@@ -158,14 +158,28 @@ def test_code_stuck_in_one_step_is_still_a_timeout_within_its_bound(name: str, t
 class StallingMachine(CallClock):
     """A machine that holds up the waits numbered `first` to `first + count - 1` of the test (counted from
     1, every wait of every worker) past their wall bound, at once: what `stall_seconds` of a paused
-    worker would give, without the wait."""
+    worker would give, without the wait.
+
+    A wait is counted where it begins: a scenario step's at its first wait (`first_wait`, below: a stalled
+    one is 0, so the step goes on to its clock at once), any other wait when its clock is made. A step's
+    clock comes after its first wait (`began` given) and judges that same wait."""
 
     first, count, seen = 0, 0, 0
 
-    def __init__(self, *args, **kwargs) -> None:
-        super().__init__(*args, **kwargs)
-        StallingMachine.seen += 1
-        self.stalls = self.first <= StallingMachine.seen < self.first + self.count
+    def __init__(self, pid, limit, stall_seconds, began=None) -> None:
+        super().__init__(pid, limit, stall_seconds, began)
+        if began is None:
+            StallingMachine.seen += 1
+        self.stalls = StallingMachine.stalled()
+
+    @classmethod
+    def stalled(cls) -> bool:
+        return cls.first <= cls.seen < cls.first + cls.count
+
+    @classmethod
+    def first_wait(cls, limit: float) -> float:
+        cls.seen += 1
+        return 0.0 if cls.stalled() else first_wait(limit)
 
     def next_wait(self) -> float:
         return 0.0 if self.stalls else super().next_wait()
@@ -179,6 +193,7 @@ def stalling(monkeypatch, first: int, count: int) -> None:
     monkeypatch.setattr(StallingMachine, "count", count)
     monkeypatch.setattr(StallingMachine, "seen", 0)
     monkeypatch.setattr(runner, "CallClock", StallingMachine)
+    monkeypatch.setattr(runner, "first_wait", StallingMachine.first_wait)
 
 
 REACH = "week3.go_to_goal.reach_goals"

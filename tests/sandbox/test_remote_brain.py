@@ -66,10 +66,21 @@ def test_a_supervisor_that_raises_names_its_line(shared_dir, one_mode):
             _run(RemoteBrain(session, SETTINGS))
 
 
+# the worker answers a step record with the writer it made for the run (grader.inside.record_writer),
+# found here among the worker's objects and made to write what the forged LocalBrain.step returns (sent as
+# JSON where it is not a record's types)
+_WRITES_STEP = ("        import gc\n"
+                "        for worker in gc.get_objects():\n"
+                "            if type(worker).__name__ == '_Worker':\n"
+                "                worker.write = lambda rid, worker=worker: worker.brain.step(None)\n")
+
+
 def test_a_forged_command_is_refused_by_the_simulator_rules(shared_dir, one_mode):
-    # Student code can rewrite the worker's own LocalBrain, so the command is whatever it likes...
+    # Student code can rewrite the worker's own LocalBrain and step records, so the command is whatever it
+    # likes...
     forge = ("        from simiam.control.local_brain import LocalBrain\n"
-             "        LocalBrain.step = lambda self, readings: {'vel_r': 'fast', 'vel_l': 1e9}\n")
+             "        LocalBrain.step = lambda self, readings: {'vel_r': 'fast', 'vel_l': 1e9}\n"
+             + _WRITES_STEP)
     folder = _broken(shared_dir, forge)
     with StudentSession(3, folder, sandbox=one_mode) as session:
         with pytest.raises(BrainError, match="vel_r must be a finite number"):  # ...and checked here
@@ -82,7 +93,7 @@ def test_forged_debug_values_reach_the_trace_only_as_declared_kinds(shared_dir, 
             "'theta_g': True, 'u_ao': [1, 2, 3], 'ir_points_wf': [[0.0] * 1000, [0.0] * 1000], "
             "'junk': list(range(1000))}}")
     forge = ("        from simiam.control.local_brain import LocalBrain\n"
-             f"        LocalBrain.step = lambda self, readings: {junk}\n")
+             f"        LocalBrain.step = lambda self, readings: {junk}\n" + _WRITES_STEP)
     folder = _broken(shared_dir, forge)
     # each step carries about 1 MB of forged JSON back: 0.2 s with both cores busy, so 10 s per step
     with StudentSession(3, folder, Limits(call_seconds=10.0), sandbox=one_mode) as session:
