@@ -147,6 +147,45 @@ def test_every_hostile_frame_is_a_protocol_violation(week):
     assert _accepted_hostile(_layout(week)) == []
 
 
+def _framed_differs(layout: StepLayout, payload: bytes) -> str:
+    """'' when decode_frame of `payload` framed as the answer to request 9 gives what decode_answer gives
+    (the same dict or the same ProtocolError), or None for a payload shorter than the fixed part (the
+    caller then reads it frame by frame, into decode_answer); and None for another id or kind."""
+    frame = HEADER.pack(ANSWER, 9, len(payload)) + payload
+    results = []
+    for decode_one in (lambda: layout.decode_answer(payload), lambda: layout.decode_frame(frame, 9)):
+        try:
+            results.append(decode_one())
+        except ProtocolError as exc:
+            results.append(f"ProtocolError: {exc}")
+    plain, framed = results
+    wanted = None if len(payload) < layout.answer.size else plain
+    if json.dumps(framed, sort_keys=True) != json.dumps(wanted, sort_keys=True):
+        return f"framed {framed!r}, plain {plain!r}"
+    for other in (HEADER.pack(ANSWER, 8, len(payload)) + payload, HEADER.pack(1, 9, len(payload)) + payload,
+                  frame + b"x", frame[:-1]):
+        if len(other) >= HEADER.size + layout.answer.size and layout.decode_frame(other, 9) is not None:
+            return f"decoded another frame: {other!r}"
+    return ""
+
+
+@pytest.mark.parametrize("week", [3, 5, 6, 7])
+def test_the_framed_decoder_gives_what_the_payload_decoder_gives(week):
+    layout = _layout(week)
+    frames = {**_hostile(layout), "honest": _payload(layout, _answer(layout)),
+              "absent": _payload(layout, _answer(layout, frozenset(layout.names)))}
+    assert {name: d for name, p in frames.items() if (d := _framed_differs(layout, p))} == {}
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from([3, 6, 7]), st.binary(max_size=400), st.integers(0, 3))
+def test_the_framed_decoder_gives_what_the_payload_decoder_gives_for_random_bytes(week, noise, splice):
+    layout = layout_for(week_signals(get_week(week)), 5)
+    honest = _payload(layout, _answer(layout))
+    payload = noise if splice == 0 else (honest[:len(honest) - len(noise)] + noise)[:len(honest)]
+    assert _framed_differs(layout, payload) == ""
+
+
 def test_the_test_catches_a_decoder_that_reads_before_it_checks():
     missed = _accepted_hostile(_layout(6, TrustingLayout))
     assert any("truncated by one: decoded" in m for m in missed), missed
