@@ -8,8 +8,10 @@ For each week, one step's readings and the week's solution's answer (recorded fr
 week's `simiam run` scenario) go both ways through each codec, in one process: the grader's encoding of
 the readings, the worker's decoding of them, the worker's encoding of the answer and the grader's decoding
 and bounding of it (as before records: protocol.encode_request / decode_request, to_json + weigh + encode,
-the LineReader's split + decode + check_message; with records: grader.inside.step_record and the
-FrameReader). Each codec runs under `valgrind --tool=callgrind` twice, for `steps` and 3 x `steps`
+the LineReader's split + decode + check_message; with records: grader.inside.step_record's
+encode_readings, decode_request, encode_answer and decode_frame, whole frames as a step takes them; in the
+worker the answer's packing is the same code as encode_answer's, reading the supervisor instead of a dict:
+grader.inside.record_writer). Each codec runs under `valgrind --tool=callgrind` twice, for `steps` and 3 x `steps`
 steps; the difference over 2 x `steps` is its instructions per step, start-up excluded. System calls,
 the brain and the simulator are not in it.
 
@@ -53,8 +55,6 @@ def _loop(week_n: int, codec: str, steps: int) -> None:
     """Run inside valgrind: `steps` round trips of one step through `codec`."""
     from grader.inside.answer_bounds import check_message, weigh
     from grader.inside.protocol import FrameReader, decode, decode_request, encode, encode_request, to_json
-    from grader.inside.step_record import HEADER
-
     readings, answer, layout = _sample(week_n)
     if codec == "json":
         for k in range(steps):
@@ -67,12 +67,12 @@ def _loop(week_n: int, codec: str, steps: int) -> None:
             message = decode(reader.pop())  # type: ignore[arg-type]
             check_message(message)
     else:
-        for k in range(steps):
+        for k in range(steps):  # as the grader and the worker take them: whole frames
             frame = layout.encode_readings(k, readings)
-            request = layout.decode_readings(frame[HEADER.size:])  # type: ignore[index]
-            reply = layout.encode_answer(k, answer)
+            rid, request = layout.decode_request(frame)  # type: ignore[arg-type,misc]
+            reply = layout.encode_answer(rid, answer)
             assert reply is not None, "the solution's answer is not a record"
-            layout.decode_answer(reply[HEADER.size:])
+            layout.decode_frame(reply, k)
     assert request["ticks"] == readings["ticks"]
 
 
@@ -86,9 +86,9 @@ def _hot(week_n: int) -> dict[str, float]:
     request, reply = layout.encode_readings(1, readings), layout.encode_answer(1, answer)
     assert request is not None and reply is not None, "the solution's step is not a record"
     parts = {"encode_readings": lambda: layout.encode_readings(1, readings),
-             "decode_readings": lambda: layout.decode_readings(request, HEADER.size),
+             "decode_request": lambda: layout.decode_request(request),
              "encode_answer": lambda: layout.encode_answer(1, answer),
-             "decode_answer": lambda: layout.decode_answer(reply[HEADER.size:]),
+             "decode_frame": lambda: layout.decode_frame(reply, 1),
              "struct_unpack_answer": lambda: layout.answer.unpack_from(reply, HEADER.size)}
     n = 20000
     return {name: round(min(timeit.repeat(part, number=n, repeat=7)) / n * 1e6, 2)

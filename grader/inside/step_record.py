@@ -98,12 +98,23 @@ class StepLayout:
         except (struct.error, TypeError):
             return None
 
-    def decode_readings(self, data: bytes, at: int = 0) -> dict:
-        """The readings dict JSON would give, from the record's payload `data[at:]` (inside the worker)."""
-        if len(data) - at != self.readings.size:
-            raise ProtocolError(f"a readings record of {len(data) - at} bytes, not {self.readings.size}")
-        t, dt, right, left, *ir_raw = self.readings.unpack_from(data, at)
+    def decode_readings(self, payload: bytes) -> dict:
+        """The readings dict JSON would give, from a readings record's payload (inside the worker)."""
+        if len(payload) != self.readings.size:
+            raise ProtocolError(f"a readings record of {len(payload)} bytes, not {self.readings.size}")
+        t, dt, right, left, *ir_raw = self.readings.unpack(payload)
         return {"t": t, "dt": dt, "ticks": [right, left], "ir_raw": ir_raw}
+
+    def decode_request(self, data: bytes) -> tuple[int, dict] | None:
+        """(request id, `decode_readings` of the payload) when `data` is exactly one whole readings record
+        of this layout (its header read in the same unpacking: a step's common case); None otherwise,
+        and the worker then reads `data` frame by frame."""
+        if len(data) != self._request.size:
+            return None
+        kind, rid, size, t, dt, right, left, *ir_raw = self._request.unpack(data)
+        if kind != REQUEST or size != self.readings.size:
+            return None
+        return rid, {"t": t, "dt": dt, "ticks": [right, left], "ir_raw": ir_raw}
 
     # ---- answers: the worker writes them, the grader checks and reads them ---------------------------
     def encode_answer(self, rid: int, answer: Any) -> bytes | None:

@@ -21,7 +21,6 @@ from typing import Any
 
 from grader.inside.answer_bounds import MAX_ANSWER_BYTES, OutOfBounds, weigh
 from grader.inside.protocol import (
-    HEADER,
     REQUEST,
     FrameReader,
     NotJSON,
@@ -108,16 +107,21 @@ class _Worker:
             yield self.handle({"name": fields.get("name"), "args": fields.get("args"), "op": "probe",
                                "id": rid + offset})
 
-    def step(self, kind: int, rid: int, data: bytes, at: int) -> bytes:
-        """A step's readings record (kind, id, its payload from `data[at:]`), answered: a step record, or
-        JSON where the answer is not of the record's canonical types or the student's code raised
-        (grader.inside.step_record)."""
-        layout, write = self.layout, self.write
-        if kind != REQUEST or layout is None or write is None or self.brain is None:
+    def step(self, kind: int, rid: int, payload: bytes) -> bytes:
+        """A step's readings record (kind, id, payload) that came in parts, answered as `answer_step`;
+        ProtocolError for a record that is not the readings of this run's layout."""
+        if kind != REQUEST or self.layout is None:
             raise ProtocolError("a step record before brain_start agreed on records")
-        readings = layout.decode_readings(data, at)
+        return self.answer_step(rid, self.layout.decode_readings(payload))
+
+    def answer_step(self, rid: int, readings: dict) -> bytes:
+        """Step `rid`'s answer to `readings`: a step record, or JSON where the answer is not of the record's
+        canonical types or the student's code raised (grader.inside.step_record)."""
+        write, brain = self.write, self.brain
+        if write is None or brain is None:
+            raise ProtocolError("a step record before brain_start agreed on records")
         try:  # LocalBrain.step, its answer written as the record (grader.inside.record_writer)
-            self.brain.think(readings)
+            brain.think(readings)
             answer = write(rid)
         except BaseException as exc:  # noqa: BLE001 - as handle()
             return _encoded({"id": rid, "ok": False, "error": self.describe(exc)})
@@ -252,20 +256,22 @@ def serve(config: dict) -> None:
             data = os.read(fd_in, 65536)
             if not data:
                 return
-            if data[0] == REQUEST and len(data) > HEADER.size and not reader.pending:
-                _, rid, size = HEADER.unpack_from(data)
-                if len(data) == HEADER.size + size:  # a step's record whole in one read, as nearly all are
-                    if not _answer_step(worker, fd_out, REQUEST, rid, data, HEADER.size):
-                        return
-                    continue
+            layout = worker.layout
+            whole = None if layout is None or reader.pending else layout.decode_request(data)
+            if whole is not None:  # a step's readings record whole in one read, as nearly all are
+                _reply(fd_out, worker.answer_step(*whole))
+                continue
             try:
                 reader.feed(data)
             except ProtocolError:
                 return
             continue
         if isinstance(line, Record):  # a step's record that came in parts
-            if not _answer_step(worker, fd_out, line.kind, line.rid, line.payload, 0):
+            try:
+                answer = worker.step(line.kind, line.rid, line.payload)
+            except ProtocolError:
                 return
+            _reply(fd_out, answer)
             continue
         try:
             request = decode_request(line)
@@ -280,16 +286,10 @@ def serve(config: dict) -> None:
                                "error": {"type": "NotJSON", "message": "the answer could not be encoded"}})
 
 
-def _answer_step(worker: _Worker, fd_out: int, kind: int, rid: int, data: bytes, at: int) -> bool:
-    """Answer a step's record (its payload from `data[at:]`); False if it broke the protocol (the
-    worker then ends)."""
-    try:
-        answer = worker.step(kind, rid, data, at)
-    except ProtocolError:
-        return False
+def _reply(fd_out: int, answer: bytes) -> None:
+    """Send a step's answer, after what the student printed while computing it."""
     _flush_student_output()
     _write_all(fd_out, answer)
-    return True
 
 
 def _flush_student_output() -> None:
