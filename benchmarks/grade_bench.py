@@ -3,8 +3,10 @@
     python benchmarks/grade_bench.py [--repeat 3] [--weeks 1 2 3 4] [--cli-week 3] [--no-hidden] [--report]
                                      [--sandbox auto|bwrap|subprocess]
 
-Prints the machine line; the baseline (a fresh `python -c 'import grader.grading'` plus a bare sandboxed
-worker start, see grading_baseline.py); then `grade weekN --solutions` as a user runs it (a fresh
+Measures the baseline (a fresh `python -c 'import grader.grading'` plus a bare sandboxed worker start, see
+grading_baseline.py) before and after the runs and divides by their mean, saying how far the two are apart
+(on a shared machine the speed drifts: a 15 % change is flagged). The runs: `grade weekN --solutions` as a
+user runs it (a fresh
 process: imports, splicing, the worker, every check, the HTML report), and grade_submission per week in
 this already-warm process, visible checks and with --hidden (without the report, unless --report: then
 each also writes its JSON and HTML report, as `grade weekN` does). Each figure in wall and CPU seconds (all
@@ -21,7 +23,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from grading_baseline import Baseline, measure_baseline
+from grading_baseline import Baseline, drift_line, measure_baseline, pooled
 
 from grader.grading import grade_submission
 from grader.sandbox.errors import SandboxUnavailable
@@ -80,9 +82,9 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     print(machine_line(base.sandbox), flush=True)
     print(bytecode, flush=True)
-    print("\n".join(base.lines()), flush=True)
+    figures: list[tuple[str, list[Usage], str]] = []  # printed at the end, divided by the pooled baseline
     runs = [cli_run(args.cli_week, args.sandbox) for _ in range(args.repeat)]
-    print(_figure(f"grade week{args.cli_week} --solutions (fresh process)", runs, base), flush=True)
+    figures.append((f"grade week{args.cli_week} --solutions (fresh process)", runs, ""))
     for hidden in (False, True) if not args.no_hidden else (False,):
         for week in args.weeks:
             usages, checks = [], []
@@ -97,7 +99,13 @@ def main(argv: list[str] | None = None) -> int:
                      f"{result['score']:g}/{result['max_score']:g}, isolation {result.get('isolation', '?')}")
             label = (f"week{week} {'hidden ' if hidden else 'visible'} grade_submission "
                      f"{'and its report ' if args.report else ''}(warm process)")
-            print(_figure(label, usages, base, extra), flush=True)
+            figures.append((label, usages, extra))
+    after = measure_baseline(args.sandbox, week=args.cli_week, runs=max(3, args.repeat))
+    both = pooled(base, after)
+    print("\n".join(both.lines()))
+    print(drift_line(base, after))
+    for label, usages, extra in figures:
+        print(_figure(label, usages, both, extra))
     print(load_after_line())
     return 0
 

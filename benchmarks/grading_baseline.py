@@ -56,3 +56,24 @@ def measure_baseline(sandbox: str = "auto", week: int = 3, runs: int = 5) -> Bas
     """Measure the baseline now (a few seconds)."""
     worker = median_usage([bare_worker_start(week, sandbox) for _ in range(runs)])
     return Baseline(interpreter_start(runs), import_start(runs), worker, sandbox_description(sandbox))
+
+
+def pooled(before: Baseline, after: Baseline) -> Baseline:
+    """One baseline from two measured around a benchmark's runs: each part the mean of the two medians,
+    so that a machine whose speed drifted during the runs is divided by what it was on average."""
+    def mean(a: Usage, b: Usage) -> Usage:
+        return Usage((a.wall + b.wall) / 2, (a.cpu_self + b.cpu_self) / 2,
+                     (a.cpu_children + b.cpu_children) / 2)
+
+    return Baseline(mean(before.python, after.python), mean(before.imports, after.imports),
+                    mean(before.worker, after.worker), before.sandbox)
+
+
+def drift_line(before: Baseline, after: Baseline) -> str:
+    """The baseline before and after the runs, and a warning where the machine's speed changed between."""
+    b, a = before.total.cpu, after.total.cpu
+    line = (f"baseline CPU before the runs {b * 1000:.0f} ms, after {a * 1000:.0f} ms: the ratios divide by "
+            f"their mean")
+    if min(a, b) > 0 and max(a, b) / min(a, b) > 1.15:
+        line += " (the machine's speed changed by more than 15 % during the runs: run again to compare)"
+    return line

@@ -11,9 +11,9 @@ and bounding of it (as before records: protocol.encode_request / decode_request,
 the LineReader's split + decode + check_message; with records: grader.inside.step_record's
 encode_readings, decode_request, encode_answer and decode_frame, whole frames as a step takes them; in the
 worker the answer's packing is the same code as encode_answer's, reading the supervisor instead of a dict:
-grader.inside.record_writer). Each codec runs under `valgrind --tool=callgrind` twice, for `steps` and 3 x `steps`
-steps; the difference over 2 x `steps` is its instructions per step, start-up excluded. System calls,
-the brain and the simulator are not in it.
+grader.inside.record_writer). Each codec runs under `valgrind --tool=callgrind` twice, for `steps` and
+3 x `steps` steps; the difference over 2 x `steps` is its instructions per step, start-up excluded.
+System calls, the brain and the simulator are not in it.
 
 `--hot` times each part of the records' codec instead (timeit, best of 7, one process, its code and data
 warm in the caches): what a part costs at best, to set beside what the step costs where the two processes
