@@ -21,7 +21,8 @@ CPU) over steps 2..N of the run (the first step starts the brain), divided by th
   the rest of the answer is packed, checked and read;
 - one process: the Simulator with LocalBrain in this thread.
 `--against DIR` also measures the step of another checkout (e.g. `git archive BASE | tar -x -C DIR`),
-alternating with this one, so that an A/B holds under the same load. The load is printed before and
+alternating with this one, so that an A/B holds under the same load; with `--repeat` 4 or more it also
+prints the lower quartile of each side's runs and their ratio. The load is printed before and
 after: on a shared machine compare the ratios of one run, not runs of other days.
 """
 
@@ -234,6 +235,11 @@ def _against(directory: Path, week_n: int, sandbox: str) -> float:
     return sum(json.loads(said)) if said.startswith("[") else float(said)
 
 
+def _quartile(values: list[float]) -> float:
+    """The lower quartile of `values` (at least one)."""
+    return sorted(values)[len(values) // 4]
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--weeks", type=int, nargs="+", default=[3, 4, 6])
@@ -264,7 +270,11 @@ def main(argv: list[str] | None = None) -> int:
                 f"{child:.1f} (above the ideal: grader {grader - parent:+.1f}, worker {worker - child:+.1f})")
         if others:
             line += (f"; {args.against} step {min(others):.1f} us = {min(others) / best_ideal:.2f}x ideal "
-                     f"(this step {best_step / min(others):.2f}x it)")
+                     f"(this step {best_step / min(others):.2f}x it")
+            if args.repeat >= 4:  # on a machine whose speed drifts, a quartile of many says more than a best
+                mine, theirs = _quartile([sum(s) for s in steps]), _quartile(others)
+                line += f"; lower quartiles {mine:.1f} and {theirs:.1f} us: {mine / theirs:.2f}x"
+            line += ")"
         print(line, flush=True)
     print(load_after_line())
     return 0
