@@ -58,7 +58,7 @@ def test_grade_bench_prints_machine_baseline_and_ratios():
     assert "baseline: python -c 'import grader.grading'" in out and "baseline: bare worker start" in out
     assert re.search(r"^grade week1 --solutions \(fresh process\): wall .* CPU ", out, re.M)
     assert len(_ratios(out, "baseline CPU")) == 2  # the fresh process and the warm grade_submission
-    assert re.search(r"^baseline CPU before the runs \d+ ms, after \d+ ms", out, re.M)  # divided by their mean
+    assert re.search(r"^baseline CPU before the runs \d+ ms, after \d+ ms", out, re.M)  # the two averaged
 
 
 def test_pages_bench_prints_machine_sizes_and_the_same_run_baseline():

@@ -62,16 +62,39 @@ def test_the_wrong_version_with_a_fresh_budget_per_session_is_caught(tmp_path: P
     assert "a session with a budget of its own" in one_budget(result, sessions)
 
 
+def _spent_before_and_in_all(tmp_path: Path, monkeypatch) -> tuple[float, float]:
+    """The grading's budget spent when the second worker starts its first run, and spent in all: this
+    machine's figures now, from a grading with the default limits."""
+    starts: list[tuple[int, float]] = []
+    real = StudentSession.start_brain
+
+    def start_brain(self, **fields):
+        starts.append((id(self), self.budget.used))
+        return real(self, **fields)
+
+    monkeypatch.setattr(StudentSession, "start_brain", start_brain)
+    result, sessions = grade_counting_sessions(tmp_path / "measured", monkeypatch)
+    monkeypatch.setattr(StudentSession, "start_brain", real)
+    assert len(sessions) == 2, "the measuring grading opened one worker"
+    before = next(used for session, used in starts if session == id(sessions[1]))
+    return before, result["time_budget"]["used_seconds"]
+
+
 def test_the_total_binds_the_runs_on_the_second_worker(tmp_path: Path, monkeypatch) -> None:
-    """With almost nothing to spend, the runs on the second worker end on the grading's total. The workers'
-    CPU is read at every call here: the grader reads it every CPU_READ_EVERY seconds of calls, so on a fast,
-    idle machine a 0.05 s total would otherwise be seen only after the runs ended."""
+    """With too little to spend, the runs on the second worker end on the grading's total. The workers' CPU
+    is read at every call here: the grader reads it every CPU_READ_EVERY seconds of calls, so on a fast,
+    idle machine a small total would otherwise be seen only after the runs ended. The total is what the
+    loads took on this machine just now plus 40 % of what the runs took: a fixed 0.05 s was used up by
+    the first load alone on a loaded machine, where the loads' CPU grows as the runs' does."""
     monkeypatch.setattr(time_budget, "CPU_READ_EVERY", 0.0)
-    result, sessions = grade_counting_sessions(tmp_path, monkeypatch, Limits(total_seconds=0.05))
+    before, spent = _spent_before_and_in_all(tmp_path, monkeypatch)
+    total = before + 0.4 * (spent - before)
+    print(f"the loads spent {before:.3f} s, all {spent:.3f} s: a total of {total:.3f} s")
+    result, sessions = grade_counting_sessions(tmp_path, monkeypatch, Limits(total_seconds=total))
     check = result["checks"][0]
     print(check["message"])
     # a run that ended before the total ran out keeps its points (with step records a whole run of week 5
     # can take less than 0.05 s of CPU); the run that found the total spent is the timeout
     assert check["status"] == "timeout" and check["points"] < check["max_points"]
-    assert "the submission used up its total time of 0.05 s" in check["message"]
+    assert f"the submission used up its total time of {total:g} s" in check["message"]
     assert one_budget(result, sessions) == [] and sessions[1].calls > 0
