@@ -164,7 +164,7 @@ class WorkerProcess:
         except OSError:
             self._die("it stopped reading requests")
         began = time.monotonic()
-        wait = first_wait(timeout)  # 0: already past its bound (a stalled machine): the general wait judges
+        wait = first_wait(timeout)  # 0 (the tests' stalling machine): the general wait judges at once
         if wait > 0 and self._resp_r >= 0 and not self._reader.pending and \
                 self._answers.poll(int(wait * 1000) + 1):
             data = os.read(self._resp_r, 1 << 16)
@@ -191,13 +191,7 @@ class WorkerProcess:
     def _write(self, data: bytes) -> None:
         """Write first and wait only when the pipe is full (the request pipe is non-blocking): a request
         of a few hundred bytes costs one system call, and a worker that stops reading costs 5 s at most."""
-        try:
-            sent = os.write(self._req_w, data)  # nearly always all of it, at once
-        except BlockingIOError:
-            sent = 0
-        if sent == len(data):
-            return
-        view = memoryview(data)[sent:]
+        view = memoryview(data)
         while view:
             try:
                 view = view[os.write(self._req_w, view):]
