@@ -50,7 +50,9 @@ def writer_source(layout: Any) -> str:
     for i, (_name, of_controller, attr, index, _reader, n) in enumerate(plan):
         owner = "ctl" if of_controller else "SUP"
         if index is None:
-            lines += [f"    v{i} = R{i}(getattr({owner}, {attr!r}, None), {n})"]
+            lines += [f"    v{i} = getattr({owner}, {attr!r}, None)",
+                      f"    if v{i} is not None:",  # as read_signals: a reader gives None for None
+                      f"        v{i} = R{i}(v{i}, {n})"]
         else:  # read_signals' indexing: any exception of the student's object means None
             lines += [f"    x{i} = getattr({owner}, {attr!r}, None)",
                       f"    if x{i} is not None:",
@@ -58,7 +60,7 @@ def writer_source(layout: Any) -> str:
                       f"            x{i} = x{i}[{index!r}]",
                       "        except Exception:",
                       f"            x{i} = None",
-                      f"    v{i} = R{i}(x{i}, {n})"]
+                      f"    v{i} = None if x{i} is None else R{i}(x{i}, {n})"]
     lines += [f"    got = ({''.join(v + ', ' for v in values)})",  # as read, before absent ones are zeroed
               "    if len(est) != 3 or type(state) is not str:",
               f"        {fallback}"]

@@ -160,6 +160,26 @@ def test_the_robot_side_reads_numpy_values_as_plain_json():
     assert json.dumps(got) and all(type(v) is float for v in got["ir_points_wf"][0])
 
 
+@pytest.mark.parametrize("kind", sorted(signals._READ))  # noqa: SLF001 - the readers themselves
+def test_every_reader_gives_none_for_none(kind):
+    # read_signals and the worker's record writer skip the reader for None (most steps' absent signals):
+    # exact only while every reader says None for it, as a reader mapping None to a value would not
+    assert signals._READ[kind](None, 5) is None  # noqa: SLF001
+
+
+def test_read_signals_skips_no_reader_but_for_none(monkeypatch):
+    seen = []
+    monkeypatch.setitem(signals._READ, "scalar", lambda x, n: seen.append(x) or 7.0)  # noqa: SLF001
+
+    class Sup:
+        current_controller = None
+        theta_g = 0.0
+        outputs = (None, 0.5)
+
+    got = read_signals(Sup(), declared(("v", "w")), 5)
+    assert got == {"v": None, "w": 7.0} and seen == [0.5]
+
+
 def test_the_robot_side_survives_hostile_objects():
     class Boom:
         def __getitem__(self, i):
