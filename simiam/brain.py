@@ -3,12 +3,13 @@
 A Brain is anything with `step(readings) -> command`: the student's supervisor in this process
 (`simiam.control.local_brain.LocalBrain`), the same behind the sandbox's pipe (`RemoteBrain`), or a
 trusted test double. Only plain values cross: `Readings` in, `Command` out. The simulator passes every
-command through `validate_command` before it uses any of it, whoever the brain is.
+command through `validate_command` before it uses any of it, whoever the brain is (a `Checked` command
+was checked by the same rules where the grader decoded it, and passes as it is).
 """
 
 from __future__ import annotations
 
-from typing import Any, Protocol, TypedDict
+from typing import Any, Protocol, TypedDict, cast
 
 from simiam.robot.quickbot import IR_MOUNTS
 from simiam.signals import WEEKS_1_TO_4, Plan, Signal, clean_debug, declared, real
@@ -55,6 +56,21 @@ class BrainError(Exception):
     """The brain returned something that is not a valid command."""
 
 
+class Checked(dict):
+    """A command that trusted code has already made exactly what `validate_command` returns for it, for
+    the signals and IR count in `of` ((signals, n_ir), as validate_command takes them): validate_command
+    returns it as it is when they are its own, and checks it like any other dict otherwise.
+
+    Made only by the grader's decoder of step records (grader.inside.step_record, in the grading
+    process), after it found every value already canonical: finite doubles, short strings, counts and
+    points within their rules. Nothing a brain returns as a value is ever one: the sandbox sends bytes,
+    and a LocalBrain builds plain dicts.
+    """
+
+    __slots__ = ("of",)
+    of: tuple[tuple[Signal, ...], int]
+
+
 class ConstantBrain:
     """A trusted brain that requests the same wheel speeds every step (tests, benchmarks)."""
 
@@ -79,6 +95,8 @@ def validate_command(command: Any, signals: tuple[Signal, ...] = _DEFAULT, n_ir:
     `n_ir` (the robot's IR sensor count) sizes the points signals; the defaults are weeks 1-4's. The
     simulator passes `plan` (simiam.signals.debug_plan) worked out once per run.
     """
+    if type(command) is Checked and command.of == (signals, n_ir):  # validated when it was decoded
+        return cast(Command, command)
     if not isinstance(command, dict):
         raise BrainError(f"the command must be a dict, got {type(command).__name__}")
     get = command.get

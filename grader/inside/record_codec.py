@@ -21,11 +21,11 @@ from collections.abc import Callable
 from typing import Any
 
 from grader.inside.protocol import ANSWER, HEADER, ProtocolError
-from simiam.signals import declared
+from simiam.signals import MAX_POINTS, declared
 
 Encoder = Callable[[int, Any], "bytes | None"]
 Decoder = Callable[[bytes], dict]
-FrameDecoder = Callable[[bytes, int], "dict | None"]
+FrameDecoder = Callable[[bytes, int, "type[dict] | None"], "dict | None"]
 
 
 def source(layout: Any) -> str:
@@ -153,7 +153,7 @@ def _decoder(layout: Any, framed: bool) -> str:
     flags_at, labels_at = layout._flags_at + h, layout._labels_at + h  # noqa: SLF001
     if framed:
         lines = [
-            "def decode_frame(data, rid):",
+            "def decode_frame(data, rid, checked=None):",
             "    size = len(data) - HEAD",
             "    if size < FIXED:",
             "        return None",
@@ -229,7 +229,40 @@ def _decoder(layout: Any, framed: bool) -> str:
               "    if presence != ALL:",
               "        for name, present in zip(NAMES, presence):",
               "            if not present:",
-              "                debug[name] = None",
-              f"    return {{'vel_r': raw[{h}], 'vel_l': raw[{h + 1}], "
+              "                debug[name] = None"]
+    items = (f"vel_r=raw[{h}], vel_l=raw[{h + 1}], estimate=[raw[{h + 2}], raw[{h + 3}], raw[{h + 4}]], "
+             "state=state, debug=debug")
+    if framed:
+        lines += _checked_lines(layout, h, [i for i, _at in labels], items)
+    lines += [f"    return {{'vel_r': raw[{h}], 'vel_l': raw[{h + 1}], "
               f"'estimate': [raw[{h + 2}], raw[{h + 3}], raw[{h + 4}]], 'state': state, 'debug': debug}}"]
     return "\n".join(lines)
+
+
+def _checked_lines(layout: Any, h: int, labels: list[int], items: str) -> list[str]:
+    """The framed decoder's test that its answer is already its validated command (simiam.brain's
+    validate_command and simiam.signals' rules would give every value back as it is), and the
+    `checked(...)` it then returns: the command's and the scalars' and vectors' doubles of a finite sum
+    (so each is finite), each row of each points signal of a finite `sum` (the points rule's own test),
+    the state and the labels at most their character caps long in bytes, the counts from 0 to MAX_COUNT.
+    A value that fails (even one of an absent signal's slot) only sends the answer the long way."""
+    if any(n > MAX_POINTS for _name, _at, n in layout._points_at):  # noqa: SLF001
+        return []  # the points rule refuses such rows whatever they hold: always the long way
+    first, end = layout._floats + h, layout._vectors_at + h + 2 * len(layout._vectors)  # noqa: SLF001
+    total = f"sum(raw[{h}:{h + 5}])" + (f" + sum(raw[{first}:{end}])" if end > first else "")
+    tests = ["state_len <= STATE_CHARS", *(f"n{i} <= LABEL_CHARS" for i in labels),
+             *(f"0 <= raw[{layout._counts_at + h + k}] <= MAX_COUNT"  # noqa: SLF001
+               for k in range(len(layout._counts)))]  # noqa: SLF001
+    lines = ["    if checked is not None and " + " and ".join(tests) + ":",
+             f"        total = {total}",
+             "        finite = total - total == 0.0"]
+    for k, (_name, at, n) in enumerate(layout._points_at):  # noqa: SLF001
+        lines += ["        if finite:",
+                  f"            xs{k} = sum(raw[{at + h}:{at + h + n}])",
+                  f"            ys{k} = sum(raw[{at + h + n}:{at + h + 2 * n}])",
+                  f"            finite = xs{k} - xs{k} == 0.0 and ys{k} - ys{k} == 0.0"]
+    lines += ["        if finite:",
+              f"            command = checked({items})",
+              "            command.of = OF",
+              "            return command"]
+    return lines

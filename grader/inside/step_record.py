@@ -31,10 +31,12 @@ from typing import Any
 from grader.inside.protocol import HEADER, REQUEST, ProtocolError
 from grader.inside.record_codec import compile_codec
 from grader.inside.record_writer import compile_writer
-from simiam.signals import KINDS, declared
+from simiam.signals import KINDS, LABEL_CHARS, MAX_COUNT, declared
 
-STATE_BYTES = 320  # UTF-8 bytes of a state name in a record (4 per character of simiam.brain.STATE_CHARS)
-LABEL_BYTES = 320  # of a label signal (4 per character of simiam.signals.LABEL_CHARS); longer ones: JSON
+STATE_CHARS = 80  # simiam.brain.STATE_CHARS, the validation's cap of a state name (the worker has no
+#                   simiam.brain: tests/sandbox/test_checked_answers.py checks the two agree)
+STATE_BYTES = 4 * STATE_CHARS  # UTF-8 bytes of a state name in a record
+LABEL_BYTES = 4 * LABEL_CHARS  # of a label signal; longer ones: JSON
 MAX_INT64 = 2**63 - 1
 _BITS = b"\x00\x01"  # what a presence or flag byte may be (bytes.translate deletes them: nothing may be left)
 # what an absent signal's slot holds (its presence byte says it is absent), by kind, for n columns
@@ -79,7 +81,8 @@ class StepLayout:
         self._all_present = b"\x01" * len(signals)
         self.max_answer = self.answer.size + STATE_BYTES + LABEL_BYTES * len(self._labels)
         self._caps = {"STATE_BYTES": STATE_BYTES, "LABEL_BYTES": LABEL_BYTES, "MAX_INT64": MAX_INT64,
-                      "BITS": _BITS}
+                      "BITS": _BITS, "STATE_CHARS": STATE_CHARS, "LABEL_CHARS": LABEL_CHARS,
+                      "MAX_COUNT": MAX_COUNT, "OF": (signals, self.n_ir)}
         self._encode, self._decode, self._decode_frame = compile_codec(self, self._caps)  # straight-line code
 
     def to_json(self) -> dict:
@@ -134,13 +137,19 @@ class StepLayout:
         taken from it."""
         return self._decode(payload)
 
-    def decode_frame(self, data: bytes, rid: int) -> dict | None:
+    def decode_frame(self, data: bytes, rid: int, checked: type[dict] | None = None) -> dict | None:
         """`decode_answer` of the record `data` holds, when `data` is exactly one whole answer record of the
         request `rid` (its header read in the same unpacking as the fixed part: the step's common case);
         None when it is anything else (part of a record, more than one, JSON, another id, shorter than the
         fixed part), which the caller then reads frame by frame. The same checks in the same order and the
-        same ProtocolError as `decode_answer` for a whole record that is not exactly of this layout."""
-        return self._decode_frame(data, rid)
+        same ProtocolError as `decode_answer` for a whole record that is not exactly of this layout.
+
+        `checked` (the grading process passes simiam.brain.Checked): an answer whose every value is already
+        what the command's validation would make of it (finite doubles, every row of a points signal of a
+        finite sum, a state and labels within their character caps, counts from 0 to MAX_COUNT) comes as a
+        `checked` of the same items, its `of` this layout's (signals, IR count), which the validation then
+        takes as it is; any other answer comes as the plain dict, for the validation to check."""
+        return self._decode_frame(data, rid, checked)
 
 
 _LAYOUTS: dict[tuple, StepLayout] = {}

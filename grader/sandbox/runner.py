@@ -46,6 +46,7 @@ from grader.sandbox.isolation import SUBPROCESS, WorkerPlan
 from grader.sandbox.leftovers import remove_files_of, remove_ipc_of
 from grader.sandbox.output import CappedOutput
 from grader.sandbox.worker_clock import MACHINE, STUDENT, CallClock, first_wait
+from simiam.brain import Checked
 
 DUMP_WAIT_SECONDS = 0.25   # how long a timed-out worker gets to write its stack dump before the kill
 DUMP_IDLE_SECONDS = 0.02
@@ -169,7 +170,7 @@ class WorkerProcess:
                 self._answers.poll(int(wait * 1000) + 1):
             data = os.read(self._resp_r, 1 << 16)
             try:
-                value = layout.decode_frame(data, rid)
+                value = layout.decode_frame(data, rid, Checked)  # validated as it is decoded, if it can
             except ProtocolError as exc:
                 self._die(f"it broke the protocol ({exc})")
             if value is not None:
