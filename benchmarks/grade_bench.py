@@ -4,14 +4,15 @@
                                      [--sandbox auto|bwrap|subprocess]
 
 Measures the baseline (a fresh `python -c 'import grader.grading'` plus a bare sandboxed worker start, see
-grading_baseline.py) before and after the runs and divides by their mean, saying how far the two are apart
-(on a shared machine the speed drifts: a 15 % change is flagged). The runs: `grade weekN --solutions` as a
-user runs it (a fresh
-process: imports, splicing, the worker, every check, the HTML report), and grade_submission per week in
-this already-warm process, visible checks and with --hidden (without the report, unless --report: then
-each also writes its JSON and HTML report, as `grade weekN` does). Each figure in wall and CPU seconds (all
-processes: the grader and its sandboxed workers) and as a ratio to the baseline. A figure to read, not a
-test: on a shared machine compare CPU seconds and the ratios, not wall seconds.
+grading_baseline.py) before and after the runs and divides by their mean, saying how far the two are apart (on
+a shared machine the speed drifts: a 15 % change is flagged). Each run is also paired with one baseline
+measured just before it, and the median of the runs' ratios to their own baseline is printed ("paired"): the
+figure that holds when the machine's speed drifts within the benchmark. The runs: `grade weekN --solutions` as
+a user runs it (a fresh process: imports, splicing, the worker, every check, the HTML report), and
+grade_submission per week in this already-warm process, visible checks and with --hidden (without the report,
+unless --report: then each also writes its JSON and HTML report, as `grade weekN` does). Each figure in wall
+and CPU seconds (all processes: the grader and its sandboxed workers) and as a ratio to the baseline. A figure
+to read, not a test: on a shared machine compare CPU seconds and the ratios, not wall seconds.
 """
 
 from __future__ import annotations
@@ -21,9 +22,10 @@ import statistics
 import subprocess
 import sys
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 
-from grading_baseline import Baseline, drift_line, measure_baseline, pooled
+from grading_baseline import Baseline, drift_line, measure_baseline, paired, pooled
 
 from grader.grading import grade_submission
 from grader.sandbox.errors import SandboxUnavailable
@@ -42,6 +44,13 @@ ROOT = Path(__file__).resolve().parents[1]
 _CLI = "import sys; from grader.cli import main; sys.exit(main())"  # what the `grade` script runs
 
 
+def with_baseline(run: Callable[[], Usage], sandbox: str, week: int) -> tuple[Usage, float]:
+    """`run()`'s usage and its CPU as a ratio to a baseline measured just before it."""
+    base = paired(sandbox, week)
+    usage = run()
+    return usage, ratio(usage.cpu, base.cpu)
+
+
 def cli_run(week: int, sandbox: str) -> Usage:
     """`grade weekN --solutions` in a fresh process, report written into a temporary folder."""
     with tempfile.TemporaryDirectory(prefix="simiam-bench-") as out, Stopwatch() as sw:
@@ -53,12 +62,13 @@ def cli_run(week: int, sandbox: str) -> Usage:
     return sw.usage
 
 
-def _figure(label: str, usages: list[Usage], base: Baseline, extra: str = "") -> str:
+def _figure(label: str, usages: list[Usage], ratios: list[float], base: Baseline, extra: str = "") -> str:
     u = median_usage(usages)
     return (f"{label}: wall {u.wall:.2f} s median ({min(x.wall for x in usages):.2f} best), "
             f"CPU {u.cpu:.2f} s ({u.cpu_self:.2f} in this process + {u.cpu_children:.2f} in children) = "
             f"{ratio(u.wall, base.total.wall):.1f}x baseline wall, "
-            f"{ratio(u.cpu, base.total.cpu):.1f}x baseline CPU{extra}")
+            f"{ratio(u.cpu, base.total.cpu):.1f}x baseline CPU, paired {statistics.median(ratios):.1f}x "
+            f"({', '.join(f'{r:.1f}' for r in ratios)}){extra}")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -82,30 +92,34 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     print(machine_line(base.sandbox), flush=True)
     print(bytecode, flush=True)
-    figures: list[tuple[str, list[Usage], str]] = []  # printed at the end, divided by the pooled baseline
-    runs = [cli_run(args.cli_week, args.sandbox) for _ in range(args.repeat)]
-    figures.append((f"grade week{args.cli_week} --solutions (fresh process)", runs, ""))
+    figures: list[tuple[str, list[Usage], list[float], str]] = []  # printed at the end
+    pairs = [with_baseline(lambda: cli_run(args.cli_week, args.sandbox), args.sandbox, args.cli_week)
+             for _ in range(args.repeat)]
+    figures.append((f"grade week{args.cli_week} --solutions (fresh process)", [u for u, _ in pairs],
+                    [r for _, r in pairs], ""))
     for hidden in (False, True) if not args.no_hidden else (False,):
         for week in args.weeks:
-            usages, checks = [], []
+            usages, ratios, checks = [], [], []
             for _ in range(args.repeat):
+                base_now = paired(args.sandbox, args.cli_week)
                 with tempfile.TemporaryDirectory(prefix="simiam-bench-") as out, Stopwatch() as sw:
                     result = grade_submission(week, ROOT / "solutions" / f"week{week}", seed=2014,
                                               hidden=hidden, sandbox=args.sandbox,
                                               out_dir=Path(out) if args.report else None)
                 usages.append(sw.usage)
+                ratios.append(ratio(sw.usage.cpu, base_now.cpu))
                 checks.append(sum(result["timing"]["checks"].values()))
             extra = (f"; checks {statistics.median(checks):.2f} s, {len(result['checks'])} checks, score "
                      f"{result['score']:g}/{result['max_score']:g}, isolation {result.get('isolation', '?')}")
             label = (f"week{week} {'hidden ' if hidden else 'visible'} grade_submission "
                      f"{'and its report ' if args.report else ''}(warm process)")
-            figures.append((label, usages, extra))
+            figures.append((label, usages, ratios, extra))
     after = measure_baseline(args.sandbox, week=args.cli_week, runs=max(3, args.repeat))
     both = pooled(base, after)
     print("\n".join(both.lines()))
     print(drift_line(base, after))
-    for label, usages, extra in figures:
-        print(_figure(label, usages, both, extra))
+    for label, usages, ratios, extra in figures:
+        print(_figure(label, usages, ratios, both, extra))
     print(load_after_line())
     return 0
 

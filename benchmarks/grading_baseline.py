@@ -58,6 +58,15 @@ def measure_baseline(sandbox: str = "auto", week: int = 3, runs: int = 5) -> Bas
     return Baseline(interpreter_start(runs), import_start(runs), worker, sandbox_description(sandbox))
 
 
+def paired(sandbox: str = "auto", week: int = 3) -> Usage:
+    """One measurement of the baseline's total (an import start and a bare worker, once each), to take just
+    before one run: a machine whose speed drifts within a benchmark divides each run by what it was then."""
+    imports = import_start(1)
+    worker = bare_worker_start(week, sandbox)
+    return Usage(imports.wall + worker.wall, imports.cpu_self + worker.cpu_self,
+                 imports.cpu_children + worker.cpu_children)
+
+
 def pooled(before: Baseline, after: Baseline) -> Baseline:
     """One baseline from two measured around a benchmark's runs: each part the mean of the two medians,
     so that a machine whose speed drifted during the runs is divided by what it was on average."""

@@ -59,6 +59,8 @@ def test_grade_bench_prints_machine_baseline_and_ratios():
     assert re.search(r"^grade week1 --solutions \(fresh process\): wall .* CPU ", out, re.M)
     assert len(_ratios(out, "baseline CPU")) == 2  # the fresh process and the warm grade_submission
     assert re.search(r"^baseline CPU before the runs \d+ ms, after \d+ ms", out, re.M)  # the two averaged
+    # each run over a baseline taken just before it: one ratio per run, their median first
+    assert len(re.findall(r"paired \d+\.\dx \(\d+\.\d\)", out)) == 2
 
 
 def test_pages_bench_prints_machine_sizes_and_the_same_run_baseline():
