@@ -22,7 +22,6 @@ import statistics
 import subprocess
 import sys
 import tempfile
-from collections.abc import Callable
 from pathlib import Path
 
 from grading_baseline import Baseline, drift_line, measure_baseline, paired, pooled
@@ -42,13 +41,6 @@ from simiam.machine import (
 
 ROOT = Path(__file__).resolve().parents[1]
 _CLI = "import sys; from grader.cli import main; sys.exit(main())"  # what the `grade` script runs
-
-
-def with_baseline(run: Callable[[], Usage], sandbox: str, week: int) -> tuple[Usage, float]:
-    """`run()`'s usage and its CPU as a ratio to a baseline measured just before it."""
-    base = paired(sandbox, week)
-    usage = run()
-    return usage, ratio(usage.cpu, base.cpu)
 
 
 def cli_run(week: int, sandbox: str) -> Usage:
@@ -93,10 +85,12 @@ def main(argv: list[str] | None = None) -> int:
     print(machine_line(base.sandbox), flush=True)
     print(bytecode, flush=True)
     figures: list[tuple[str, list[Usage], list[float], str]] = []  # printed at the end
-    pairs = [with_baseline(lambda: cli_run(args.cli_week, args.sandbox), args.sandbox, args.cli_week)
-             for _ in range(args.repeat)]
-    figures.append((f"grade week{args.cli_week} --solutions (fresh process)", [u for u, _ in pairs],
-                    [r for _, r in pairs], ""))
+    runs, ratios = [], []
+    for _ in range(args.repeat):
+        base_now = paired(args.sandbox, args.cli_week)
+        runs.append(cli_run(args.cli_week, args.sandbox))
+        ratios.append(ratio(runs[-1].cpu, base_now.cpu))
+    figures.append((f"grade week{args.cli_week} --solutions (fresh process)", runs, ratios, ""))
     for hidden in (False, True) if not args.no_hidden else (False,):
         for week in args.weeks:
             usages, ratios, checks = [], [], []

@@ -29,8 +29,7 @@ class Baseline:
     @property
     def total(self) -> Usage:
         """Imports and a bare worker: the floor of grading one submission from the command line."""
-        return Usage(self.imports.wall + self.worker.wall, self.imports.cpu_self + self.worker.cpu_self,
-                     self.imports.cpu_children + self.worker.cpu_children)
+        return _floor(self.imports, self.worker)
 
     def lines(self) -> list[str]:
         """The baseline as printed lines (milliseconds, wall and CPU)."""
@@ -61,8 +60,11 @@ def measure_baseline(sandbox: str = "auto", week: int = 3, runs: int = 5) -> Bas
 def paired(sandbox: str = "auto", week: int = 3) -> Usage:
     """One measurement of the baseline's total (an import start and a bare worker, once each), to take just
     before one run: a machine whose speed drifts within a benchmark divides each run by what it was then."""
-    imports = import_start(1)
-    worker = bare_worker_start(week, sandbox)
+    return _floor(import_start(1), bare_worker_start(week, sandbox))
+
+
+def _floor(imports: Usage, worker: Usage) -> Usage:
+    """The baseline's total: the imports and the bare worker, added."""
     return Usage(imports.wall + worker.wall, imports.cpu_self + worker.cpu_self,
                  imports.cpu_children + worker.cpu_children)
 

@@ -230,12 +230,13 @@ def _decoder(layout: Any, framed: bool) -> str:
               "        for name, present in zip(NAMES, presence):",
               "            if not present:",
               "                debug[name] = None"]
-    items = (f"vel_r=raw[{h}], vel_l=raw[{h + 1}], estimate=[raw[{h + 2}], raw[{h + 3}], raw[{h + 4}]], "
-             "state=state, debug=debug")
+    command = (("vel_r", f"raw[{h}]"), ("vel_l", f"raw[{h + 1}]"),  # the answer's items, for both returns
+               ("estimate", f"[raw[{h + 2}], raw[{h + 3}], raw[{h + 4}]]"),
+               ("state", "state"), ("debug", "debug"))
     if framed:
-        lines += _checked_lines(layout, h, [i for i, _at in labels], items)
-    lines += [f"    return {{'vel_r': raw[{h}], 'vel_l': raw[{h + 1}], "
-              f"'estimate': [raw[{h + 2}], raw[{h + 3}], raw[{h + 4}]], 'state': state, 'debug': debug}}"]
+        lines += _checked_lines(layout, h, [i for i, _at in labels],
+                                ", ".join(f"{key}={value}" for key, value in command))
+    lines += ["    return {" + ", ".join(f"{key!r}: {value}" for key, value in command) + "}"]
     return "\n".join(lines)
 
 

@@ -41,10 +41,8 @@ def _frame(layout: StepLayout, doubles: list[float], counts: list[int], flags: l
     """A well-formed answer record of `layout` for request 9 (any values: the decoder reads them all)."""
     fixed = layout.answer
     text = state.encode()
-    label_bytes = [t.encode() for t in labels]
-    labels_present = {name: presence[layout.names.index(name)] for name in layout._labels}  # noqa: SLF001
-    label_bytes = [b if labels_present[name] else b"" for name, b in zip(layout._labels, label_bytes,  # noqa: SLF001
-                                                                          strict=True)]
+    label_bytes = [t.encode() if presence[at] else b""  # an absent label's length must be 0
+                   for t, at in zip(labels, layout._label_presence, strict=True)]  # noqa: SLF001
     payload = fixed.pack(*doubles[:5], len(text), bytes(presence), *doubles[5:], *counts, bytes(flags),
                          *(len(b) for b in label_bytes)) + text + b"".join(label_bytes)
     return HEADER.pack(ANSWER, 9, len(payload)) + payload
